@@ -1,0 +1,1 @@
+//! The Blocks World for Teams environment: maps, world, navigation, percepts and actions.

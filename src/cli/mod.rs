@@ -1,0 +1,5 @@
+//! One file per subcommand: its arguments and what it does.
+
+pub mod check;
+pub mod prolog;
+pub mod run;

@@ -1,0 +1,1 @@
+//! The environment interface: entities, typed percepts, actions and their results.

@@ -1,0 +1,1 @@
+//! The knowledge-representation boundary (a trait) and its engines.

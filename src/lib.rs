@@ -1,0 +1,13 @@
+//! A runtime for GOAL agent programs: parser and validator (`syntax`), the shared term type
+//! (`term`), the knowledge-representation layer (`kr`), the agent interpreter (`agent`),
+//! multi-agent systems (`mas`), the environment interface (`env`) and the built-in Blocks World
+//! for Teams environment (`bw4t`). See ARCHITECTURE.md for a map.
+
+pub mod agent;
+pub mod bw4t;
+pub mod diag;
+pub mod env;
+pub mod kr;
+pub mod mas;
+pub mod syntax;
+pub mod term;

@@ -1,0 +1,33 @@
+//! The `goal` command line: check, run, test, query and benchmark GOAL agent programs.
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+mod cli;
+
+/// A fast, deterministic runtime for GOAL agent programs.
+#[derive(Parser)]
+#[command(name = "goal", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Check .goal, .mas2g, .test2g and .pl files and report every error and warning.
+    Check(cli::check::Args),
+    /// Run a multi-agent system (.mas2g) or a single agent (.goal); without a file, the default BW4T team.
+    Run(cli::run::Args),
+    /// Load Prolog files and print the answers of a query (or read queries from standard input).
+    Prolog(cli::prolog::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Check(args) => cli::check::main(args),
+        Command::Run(args) => cli::run::main(args),
+        Command::Prolog(args) => cli::prolog::main(args),
+    }
+}

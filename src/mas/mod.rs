@@ -1,0 +1,1 @@
+//! Multi-agent systems: the `.mas2g` model, launch policies, the scheduler, message routing, traces.

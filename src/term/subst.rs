@@ -1,0 +1,178 @@
+//! Substitutions (variable name to term) and syntactic unification over [`Term`]s.
+//!
+//! This is the light-weight unifier used outside the KR engine (matching action calls against
+//! action specs, macro expansion, test conditions). The KR engine has its own binding store.
+
+use super::sym::Sym;
+use super::term::Term;
+
+/// A substitution: bindings from variable names to terms, kept in insertion order so that
+/// printing and iteration are deterministic.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Subst {
+    bindings: Vec<(Sym, Term)>,
+}
+
+impl Subst {
+    /// The empty substitution.
+    pub fn new() -> Subst {
+        Subst::default()
+    }
+
+    /// The term bound to `var`, if any (not dereferenced further).
+    pub fn get(&self, var: Sym) -> Option<&Term> {
+        self.bindings.iter().find(|(v, _)| *v == var).map(|(_, t)| t)
+    }
+
+    /// Binds `var` to `term`, replacing an earlier binding.
+    pub fn bind(&mut self, var: Sym, term: Term) {
+        match self.bindings.iter_mut().find(|(v, _)| *v == var) {
+            Some(slot) => slot.1 = term,
+            None => self.bindings.push((var, term)),
+        }
+    }
+
+    /// Removes the binding of `var`.
+    pub fn unbind(&mut self, var: Sym) {
+        self.bindings.retain(|(v, _)| *v != var);
+    }
+
+    /// The bindings in insertion order.
+    pub fn iter(&self) -> impl Iterator<Item = (Sym, &Term)> {
+        self.bindings.iter().map(|(v, t)| (*v, t))
+    }
+
+    /// Number of bindings.
+    pub fn len(&self) -> usize {
+        self.bindings.len()
+    }
+
+    /// True when nothing is bound.
+    pub fn is_empty(&self) -> bool {
+        self.bindings.is_empty()
+    }
+
+    /// Keeps only the bindings of the given variables.
+    pub fn restrict(&self, vars: &[Sym]) -> Subst {
+        Subst { bindings: self.bindings.iter().filter(|(v, _)| vars.contains(v)).cloned().collect() }
+    }
+
+    /// Follows variable bindings until an unbound variable or a non-variable term.
+    pub fn walk<'a>(&'a self, mut t: &'a Term) -> &'a Term {
+        while let Term::Var(v) = t {
+            match self.get(*v) {
+                Some(next) if next != t => t = next,
+                _ => break,
+            }
+        }
+        t
+    }
+
+    /// Applies the substitution to `t` completely (bindings are followed transitively).
+    pub fn apply(&self, t: &Term) -> Term {
+        if self.bindings.is_empty() {
+            return t.clone();
+        }
+        self.apply_depth(t, 0)
+    }
+
+    fn apply_depth(&self, t: &Term, depth: usize) -> Term {
+        match self.walk(t) {
+            Term::Compound(c) if depth < 100_000 => {
+                let args: Vec<Term> = c.args.iter().map(|a| self.apply_depth(a, depth + 1)).collect();
+                if args.iter().zip(c.args.iter()).all(|(new, old)| new == old) {
+                    self.walk(t).clone()
+                } else {
+                    Term::compound(c.name, args)
+                }
+            }
+            other => other.clone(),
+        }
+    }
+
+    /// Unifies `a` and `b` under this substitution, extending it; on failure the substitution
+    /// is left unchanged and `false` is returned.
+    pub fn unify(&mut self, a: &Term, b: &Term, occurs_check: bool) -> bool {
+        let saved = self.bindings.len();
+        let mut snapshot: Option<Vec<(Sym, Term)>> = None;
+        let ok = self.unify_inner(a, b, occurs_check, &mut snapshot);
+        if !ok {
+            match snapshot {
+                Some(s) => self.bindings = s,
+                None => self.bindings.truncate(saved),
+            }
+        }
+        ok
+    }
+
+    fn unify_inner(&mut self, a: &Term, b: &Term, occurs_check: bool, snapshot: &mut Option<Vec<(Sym, Term)>>) -> bool {
+        let mut stack = vec![(a.clone(), b.clone())];
+        while let Some((x, y)) = stack.pop() {
+            let x = self.walk(&x).clone();
+            let y = self.walk(&y).clone();
+            match (&x, &y) {
+                (Term::Var(v), Term::Var(w)) if v == w => {}
+                (Term::Var(v), other) | (other, Term::Var(v)) => {
+                    if occurs_check && self.occurs(*v, other) {
+                        return false;
+                    }
+                    if self.get(*v).is_some() && snapshot.is_none() {
+                        *snapshot = Some(self.bindings.clone());
+                    }
+                    self.bind(*v, other.clone());
+                }
+                (Term::Compound(p), Term::Compound(q)) => {
+                    if p.name != q.name || p.args.len() != q.args.len() {
+                        return false;
+                    }
+                    stack.extend(p.args.iter().cloned().zip(q.args.iter().cloned()));
+                }
+                _ => {
+                    if x != y {
+                        return false;
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    fn occurs(&self, v: Sym, t: &Term) -> bool {
+        let mut found = false;
+        self.apply(t).for_each_var(&mut |w| found |= w == v);
+        found
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn f(args: Vec<Term>) -> Term {
+        Term::compound("f", args)
+    }
+
+    #[test]
+    fn unify_binds_and_applies() {
+        let mut s = Subst::new();
+        let (x, y) = (Term::var("X"), Term::var("Y"));
+        assert!(s.unify(&f(vec![x.clone(), Term::atom("b")]), &f(vec![Term::atom("a"), y.clone()]), false));
+        assert_eq!(s.apply(&f(vec![x.clone(), y.clone()])), f(vec![Term::atom("a"), Term::atom("b")]));
+    }
+
+    #[test]
+    fn failed_unification_leaves_substitution_unchanged() {
+        let mut s = Subst::new();
+        let x = Term::var("X");
+        assert!(!s.unify(&f(vec![x.clone(), Term::atom("b")]), &f(vec![Term::atom("a"), Term::atom("c")]), false));
+        assert!(s.is_empty());
+    }
+
+    #[test]
+    fn occurs_check_is_optional() {
+        let x = Term::var("X");
+        let mut s = Subst::new();
+        assert!(!s.unify(&x, &f(vec![x.clone()]), true));
+        assert!(s.unify(&x, &f(vec![x.clone()]), false));
+    }
+}

@@ -1,0 +1,143 @@
+//! Interned atoms: every atom name is stored once and named by a small integer.
+
+use std::collections::HashMap;
+use std::fmt;
+use std::sync::{OnceLock, RwLock};
+
+/// An interned atom (or functor, or variable) name.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Sym(pub u32);
+
+struct Interner {
+    ids: HashMap<&'static str, Sym>,
+    names: Vec<&'static str>,
+}
+
+/// Names interned at start-up, in this order, so that the constants below are fixed.
+const PREDEFINED: &[&str] = &[
+    "[]", ".", "{}", ",", ";", "->", "*->", "|", ":-", "-->", "?-", "\\+", "not", "true", "false",
+    "fail", "!", "-", "+", "*", "/", "=", "call", "is", "^", "end_of_file", "error", "[|]", "imp",
+    "int", "percept", "received", "sent", "agent", "me", "_",
+];
+
+/// Well-known symbols, interned at fixed positions of [`PREDEFINED`].
+pub mod well_known {
+    use super::Sym;
+    pub const NIL: Sym = Sym(0);
+    pub const DOT: Sym = Sym(1);
+    pub const CURLY: Sym = Sym(2);
+    pub const COMMA: Sym = Sym(3);
+    pub const SEMICOLON: Sym = Sym(4);
+    pub const ARROW: Sym = Sym(5);
+    pub const SOFT_ARROW: Sym = Sym(6);
+    pub const BAR: Sym = Sym(7);
+    pub const NECK: Sym = Sym(8);
+    pub const DCG_ARROW: Sym = Sym(9);
+    pub const QUERY: Sym = Sym(10);
+    pub const NAF: Sym = Sym(11);
+    pub const NOT: Sym = Sym(12);
+    pub const TRUE: Sym = Sym(13);
+    pub const FALSE: Sym = Sym(14);
+    pub const FAIL: Sym = Sym(15);
+    pub const CUT: Sym = Sym(16);
+    pub const MINUS: Sym = Sym(17);
+    pub const PLUS: Sym = Sym(18);
+    pub const STAR: Sym = Sym(19);
+    pub const SLASH: Sym = Sym(20);
+    pub const EQUALS: Sym = Sym(21);
+    pub const CALL: Sym = Sym(22);
+    pub const IS: Sym = Sym(23);
+    pub const CARET: Sym = Sym(24);
+    pub const END_OF_FILE: Sym = Sym(25);
+    pub const ERROR: Sym = Sym(26);
+    pub const SWI_CONS: Sym = Sym(27);
+    pub const IMP: Sym = Sym(28);
+    pub const INT: Sym = Sym(29);
+    pub const PERCEPT: Sym = Sym(30);
+    pub const RECEIVED: Sym = Sym(31);
+    pub const SENT: Sym = Sym(32);
+    pub const AGENT: Sym = Sym(33);
+    pub const ME: Sym = Sym(34);
+    pub const UNDERSCORE: Sym = Sym(35);
+}
+
+fn interner() -> &'static RwLock<Interner> {
+    static INTERNER: OnceLock<RwLock<Interner>> = OnceLock::new();
+    INTERNER.get_or_init(|| {
+        let mut interner = Interner { ids: HashMap::new(), names: Vec::new() };
+        for name in PREDEFINED {
+            let sym = Sym(interner.names.len() as u32);
+            interner.names.push(name);
+            interner.ids.insert(name, sym);
+        }
+        RwLock::new(interner)
+    })
+}
+
+impl Sym {
+    /// Interns `name`, returning the existing symbol when it is already known.
+    ///
+    /// Interned names live for the whole process (like atoms in most Prolog systems without
+    /// atom garbage collection); programs create a bounded set of names in practice.
+    pub fn intern(name: &str) -> Sym {
+        if let Some(sym) = interner().read().unwrap_or_else(|e| e.into_inner()).ids.get(name) {
+            return *sym;
+        }
+        let mut guard = interner().write().unwrap_or_else(|e| e.into_inner());
+        if let Some(sym) = guard.ids.get(name) {
+            return *sym;
+        }
+        let leaked: &'static str = Box::leak(name.to_owned().into_boxed_str());
+        let sym = Sym(guard.names.len() as u32);
+        guard.names.push(leaked);
+        guard.ids.insert(leaked, sym);
+        sym
+    }
+
+    /// The text of this symbol.
+    pub fn name(self) -> &'static str {
+        interner().read().unwrap_or_else(|e| e.into_inner()).names[self.0 as usize]
+    }
+}
+
+impl fmt::Debug for Sym {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.name())
+    }
+}
+
+impl fmt::Display for Sym {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl From<&str> for Sym {
+    fn from(name: &str) -> Sym {
+        Sym::intern(name)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn predefined_symbols_have_fixed_ids() {
+        assert_eq!(Sym::intern("[]"), well_known::NIL);
+        assert_eq!(Sym::intern("not"), well_known::NOT);
+        assert_eq!(Sym::intern("_"), well_known::UNDERSCORE);
+        assert_eq!(well_known::SENT.name(), "sent");
+        for (i, name) in PREDEFINED.iter().enumerate() {
+            assert_eq!(Sym::intern(name).0 as usize, i, "{name}");
+        }
+    }
+
+    #[test]
+    fn interning_is_idempotent() {
+        let a = Sym::intern("RoomA1");
+        assert_eq!(a, Sym::intern("RoomA1"));
+        assert_eq!(a.name(), "RoomA1");
+        assert_ne!(a, Sym::intern("RoomA2"));
+    }
+}

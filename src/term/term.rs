@@ -1,0 +1,348 @@
+//! The one term type shared by the parser, the KR engines, percepts, actions, messages and traces.
+
+use super::sym::{well_known as wk, Sym};
+use std::cmp::Ordering;
+use std::hash::{Hash, Hasher};
+use std::sync::Arc;
+
+/// A Prolog term. Cheap to clone: compound terms share their arguments.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Term {
+    /// An atom such as `foo`, `[]` or `'RoomA1'`.
+    Atom(Sym),
+    /// A 64-bit integer.
+    Int(i64),
+    /// A floating-point number.
+    Float(Float),
+    /// A string literal `"..."`.
+    Str(Arc<str>),
+    /// A variable, identified by its name (`_G<n>` for anonymous variables after parsing).
+    Var(Sym),
+    /// A compound term `f(a1, ..., an)` with n >= 1; lists are `'.'(Head, Tail)` cells ending in `[]`.
+    Compound(Arc<Compound>),
+}
+
+/// The functor and arguments of a compound term.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Compound {
+    /// The functor name.
+    pub name: Sym,
+    /// The arguments; never empty.
+    pub args: Box<[Term]>,
+}
+
+/// A float that is `Eq` and `Hash` by its bit pattern (with `-0.0` equal to `0.0`).
+#[derive(Clone, Copy, Debug)]
+pub struct Float(pub f64);
+
+impl Float {
+    fn key(self) -> u64 {
+        if self.0 == 0.0 {
+            0
+        } else {
+            self.0.to_bits()
+        }
+    }
+}
+
+impl PartialEq for Float {
+    fn eq(&self, other: &Self) -> bool {
+        self.key() == other.key()
+    }
+}
+impl Eq for Float {}
+impl Hash for Float {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        self.key().hash(state)
+    }
+}
+
+impl Term {
+    /// An atom with the given name.
+    pub fn atom(name: &str) -> Term {
+        Term::Atom(Sym::intern(name))
+    }
+
+    /// A variable with the given name.
+    pub fn var(name: &str) -> Term {
+        Term::Var(Sym::intern(name))
+    }
+
+    /// A string term.
+    pub fn string(text: &str) -> Term {
+        Term::Str(Arc::from(text))
+    }
+
+    /// `name(args...)`, or the atom `name` when `args` is empty.
+    pub fn compound(name: impl Into<Sym>, args: Vec<Term>) -> Term {
+        let name = name.into();
+        if args.is_empty() {
+            Term::Atom(name)
+        } else {
+            Term::Compound(Arc::new(Compound { name, args: args.into_boxed_slice() }))
+        }
+    }
+
+    /// The empty list `[]`.
+    pub fn nil() -> Term {
+        Term::Atom(wk::NIL)
+    }
+
+    /// The list cell `[head | tail]`.
+    pub fn cons(head: Term, tail: Term) -> Term {
+        Term::compound(wk::DOT, vec![head, tail])
+    }
+
+    /// A proper list of the given items.
+    pub fn list(items: impl IntoIterator<Item = Term, IntoIter: DoubleEndedIterator>) -> Term {
+        Self::list_with_tail(items, Term::nil())
+    }
+
+    /// A list of the given items ending in `tail` (a partial list when `tail` is a variable).
+    pub fn list_with_tail(
+        items: impl IntoIterator<Item = Term, IntoIter: DoubleEndedIterator>,
+        tail: Term,
+    ) -> Term {
+        items.into_iter().rev().fold(tail, |acc, item| Term::cons(item, acc))
+    }
+
+    /// The name and arity of an atom or compound (`None` for numbers, strings and variables).
+    pub fn functor(&self) -> Option<(Sym, usize)> {
+        match self {
+            Term::Atom(s) => Some((*s, 0)),
+            Term::Compound(c) => Some((c.name, c.args.len())),
+            _ => None,
+        }
+    }
+
+    /// The arguments of a compound term (empty for everything else).
+    pub fn args(&self) -> &[Term] {
+        match self {
+            Term::Compound(c) => &c.args,
+            _ => &[],
+        }
+    }
+
+    /// True for `name/arity`.
+    pub fn is_functor(&self, name: Sym, arity: usize) -> bool {
+        self.functor() == Some((name, arity))
+    }
+
+    /// True when the term is an atom or a number.
+    pub fn is_atomic(&self) -> bool {
+        matches!(self, Term::Atom(_) | Term::Int(_) | Term::Float(_) | Term::Str(_))
+    }
+
+    /// True when the term is a variable.
+    pub fn is_var(&self) -> bool {
+        matches!(self, Term::Var(_))
+    }
+
+    /// True when the term is a list cell `[_|_]`.
+    pub fn is_cons(&self) -> bool {
+        self.is_functor(wk::DOT, 2)
+    }
+
+    /// True when the term contains no variables.
+    pub fn is_ground(&self) -> bool {
+        match self {
+            Term::Var(_) => false,
+            Term::Compound(c) => c.args.iter().all(Term::is_ground),
+            _ => true,
+        }
+    }
+
+    /// The items of a proper list, or `None` if the term is not a proper list.
+    pub fn list_items(&self) -> Option<Vec<Term>> {
+        let mut items = Vec::new();
+        let mut cur = self;
+        loop {
+            match cur {
+                Term::Atom(s) if *s == wk::NIL => return Some(items),
+                Term::Compound(c) if c.name == wk::DOT && c.args.len() == 2 => {
+                    items.push(c.args[0].clone());
+                    cur = &c.args[1];
+                }
+                _ => return None,
+            }
+        }
+    }
+
+    /// Calls `f` on every variable occurrence, left to right (depth-first).
+    pub fn for_each_var(&self, f: &mut impl FnMut(Sym)) {
+        let mut stack = vec![self];
+        while let Some(t) = stack.pop() {
+            match t {
+                Term::Var(v) => f(*v),
+                Term::Compound(c) => stack.extend(c.args.iter().rev()),
+                _ => {}
+            }
+        }
+    }
+
+    /// The distinct variables of the term in order of first appearance.
+    pub fn vars(&self) -> Vec<Sym> {
+        let mut out = Vec::new();
+        self.for_each_var(&mut |v| {
+            if !out.contains(&v) {
+                out.push(v)
+            }
+        });
+        out
+    }
+
+    /// Splits a conjunction `(a, b, c)` into its conjuncts `[a, b, c]`.
+    pub fn conjuncts(&self) -> Vec<&Term> {
+        let mut out = Vec::new();
+        let mut cur = self;
+        while let Term::Compound(c) = cur {
+            if c.name == wk::COMMA && c.args.len() == 2 {
+                out.push(&c.args[0]);
+                cur = &c.args[1];
+            } else {
+                break;
+            }
+        }
+        out.push(cur);
+        out
+    }
+
+    /// Builds the conjunction of `terms` (`true` when empty).
+    pub fn conjunction(terms: Vec<Term>) -> Term {
+        let mut iter = terms.into_iter().rev();
+        match iter.next() {
+            None => Term::Atom(wk::TRUE),
+            Some(last) => iter.fold(last, |acc, t| Term::compound(wk::COMMA, vec![t, acc])),
+        }
+    }
+
+    /// Depth of the deepest nesting (an atom has depth 1); computed without recursion.
+    pub fn depth(&self) -> usize {
+        let mut max = 0;
+        let mut stack = vec![(self, 1usize)];
+        while let Some((t, d)) = stack.pop() {
+            max = max.max(d);
+            if let Term::Compound(c) = t {
+                stack.extend(c.args.iter().map(|a| (a, d + 1)));
+            }
+        }
+        max
+    }
+
+    fn order_class(&self) -> u8 {
+        match self {
+            Term::Var(_) => 0,
+            Term::Float(_) | Term::Int(_) => 1,
+            Term::Atom(_) => 3,
+            Term::Str(_) => 4,
+            Term::Compound(_) => 5,
+        }
+    }
+
+    /// Compares two terms in the standard order of terms:
+    /// Var < Number < Atom < String < Compound; numbers by value (Float before Int when equal);
+    /// atoms alphabetically; compounds by arity, then name, then arguments left to right.
+    pub fn compare(&self, other: &Term) -> Ordering {
+        let (a, b) = (self, other);
+        let class = a.order_class().cmp(&b.order_class());
+        if class != Ordering::Equal {
+            return class;
+        }
+        match (a, b) {
+            (Term::Var(x), Term::Var(y)) => x.name().cmp(y.name()),
+            (Term::Int(x), Term::Int(y)) => x.cmp(y),
+            (Term::Float(x), Term::Float(y)) => x.0.total_cmp(&y.0),
+            (Term::Int(x), Term::Float(y)) => compare_int_float(*x, y.0),
+            (Term::Float(x), Term::Int(y)) => compare_int_float(*y, x.0).reverse(),
+            (Term::Atom(x), Term::Atom(y)) => x.name().cmp(y.name()),
+            (Term::Str(x), Term::Str(y)) => x.cmp(y),
+            (Term::Compound(x), Term::Compound(y)) => x
+                .args
+                .len()
+                .cmp(&y.args.len())
+                .then_with(|| x.name.name().cmp(y.name.name()))
+                .then_with(|| {
+                    for (p, q) in x.args.iter().zip(y.args.iter()) {
+                        let o = p.compare(q);
+                        if o != Ordering::Equal {
+                            return o;
+                        }
+                    }
+                    Ordering::Equal
+                }),
+            _ => Ordering::Equal,
+        }
+    }
+}
+
+/// Standard order between an integer and a float: by value, and the float first when equal.
+fn compare_int_float(i: i64, f: f64) -> Ordering {
+    match (i as f64).partial_cmp(&f) {
+        Some(Ordering::Equal) | None => Ordering::Greater,
+        Some(o) => o,
+    }
+}
+
+impl From<Sym> for Term {
+    fn from(s: Sym) -> Term {
+        Term::Atom(s)
+    }
+}
+
+impl From<i64> for Term {
+    fn from(i: i64) -> Term {
+        Term::Int(i)
+    }
+}
+
+impl From<f64> for Term {
+    fn from(f: f64) -> Term {
+        Term::Float(Float(f))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lists_round_trip_through_items() {
+        let l = Term::list(vec![Term::atom("a"), Term::Int(1)]);
+        assert_eq!(l.list_items().unwrap(), vec![Term::atom("a"), Term::Int(1)]);
+        assert!(Term::list_with_tail(vec![Term::atom("a")], Term::var("T")).list_items().is_none());
+    }
+
+    #[test]
+    fn standard_order_of_terms() {
+        let mut ts = vec![
+            Term::compound("f", vec![Term::atom("a")]),
+            Term::atom("b"),
+            Term::Int(3),
+            Term::var("X"),
+            Term::from(2.5),
+            Term::string("s"),
+            Term::atom("a"),
+            Term::compound("a", vec![Term::Int(1), Term::Int(2)]),
+        ];
+        ts.sort_by(|a, b| a.compare(b));
+        let shown: Vec<String> = ts.iter().map(|t| t.to_string()).collect();
+        assert_eq!(shown, ["X", "2.5", "3", "a", "b", "\"s\"", "f(a)", "a(1,2)"]);
+        assert_eq!(Term::from(1.0).compare(&Term::Int(1)), Ordering::Less);
+    }
+
+    #[test]
+    fn conjunctions_split_and_join() {
+        let c = Term::conjunction(vec![Term::atom("a"), Term::atom("b"), Term::atom("c")]);
+        let parts: Vec<String> = c.conjuncts().iter().map(|t| t.to_string()).collect();
+        assert_eq!(parts, ["a", "b", "c"]);
+        assert_eq!(Term::conjunction(vec![]), Term::atom("true"));
+    }
+
+    #[test]
+    fn ground_vars_and_depth() {
+        let t = Term::compound("f", vec![Term::var("X"), Term::compound("g", vec![Term::var("Y"), Term::var("X")])]);
+        assert!(!t.is_ground());
+        assert_eq!(t.vars(), vec![Sym::intern("X"), Sym::intern("Y")]);
+        assert_eq!(t.depth(), 3);
+    }
+}
