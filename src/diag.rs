@@ -35,13 +35,37 @@ pub struct Diagnostic {
 
 impl Diagnostic {
     /// An error at `span` of `file`.
-    pub fn error(code: &str, message: impl Into<String>, file: impl Into<String>, span: Span) -> Diagnostic {
-        Diagnostic { severity: Severity::Error, code: code.into(), message: message.into(), file: file.into(), span, hint: None }
+    pub fn error(
+        code: &str,
+        message: impl Into<String>,
+        file: impl Into<String>,
+        span: Span,
+    ) -> Diagnostic {
+        Diagnostic {
+            severity: Severity::Error,
+            code: code.into(),
+            message: message.into(),
+            file: file.into(),
+            span,
+            hint: None,
+        }
     }
 
     /// A warning at `span` of `file`.
-    pub fn warning(code: &str, message: impl Into<String>, file: impl Into<String>, span: Span) -> Diagnostic {
-        Diagnostic { severity: Severity::Warning, code: code.into(), message: message.into(), file: file.into(), span, hint: None }
+    pub fn warning(
+        code: &str,
+        message: impl Into<String>,
+        file: impl Into<String>,
+        span: Span,
+    ) -> Diagnostic {
+        Diagnostic {
+            severity: Severity::Warning,
+            code: code.into(),
+            message: message.into(),
+            file: file.into(),
+            span,
+            hint: None,
+        }
     }
 
     /// Adds a hint saying what to do.
@@ -81,7 +105,15 @@ impl Diagnostic {
         let config = term::Config::default();
         if term::emit(&mut out, &config, &files, &d).is_err() {
             let (l, c) = self.line_col(source);
-            return format!("{}[{}]: {}\n  --> {}:{}:{}\n", self.severity_word(), self.code, self.message, self.file, l, c);
+            return format!(
+                "{}[{}]: {}\n  --> {}:{}:{}\n",
+                self.severity_word(),
+                self.code,
+                self.message,
+                self.file,
+                l,
+                c
+            );
         }
         String::from_utf8_lossy(&out.into_inner()).into_owned()
     }
@@ -134,10 +166,18 @@ mod tests {
     #[test]
     fn renders_with_file_line_column_and_caret() {
         let src = "main module {\n  program { if bel(p) then foo. }\n}\n";
-        let d = Diagnostic::error("E0004", "action `foo/0` is used but never specified", "a.goal", 39..42)
-            .with_hint("add an action spec for foo/0");
+        let d = Diagnostic::error(
+            "E0004",
+            "action `foo/0` is used but never specified",
+            "a.goal",
+            39..42,
+        )
+        .with_hint("add an action spec for foo/0");
         let text = d.render(src);
-        assert!(text.contains("error[E0004]: action `foo/0` is used but never specified"), "{text}");
+        assert!(
+            text.contains("error[E0004]: action `foo/0` is used but never specified"),
+            "{text}"
+        );
         assert!(text.contains("a.goal:2:26"), "{text}");
         assert!(text.contains("^^^"), "{text}");
         assert!(text.contains("help: add an action spec"), "{text}");

@@ -19,7 +19,11 @@ pub struct Op {
 }
 
 const fn op(name: &'static str, priority: u16, kind: OpType) -> Op {
-    Op { name, priority, kind }
+    Op {
+        name,
+        priority,
+        kind,
+    }
 }
 
 use OpType::*;
@@ -75,12 +79,18 @@ pub const OPERATORS: &[Op] = &[
 
 /// The infix operator with this name, if any.
 pub fn infix(name: &str) -> Option<Op> {
-    OPERATORS.iter().copied().find(|o| o.name == name && matches!(o.kind, Xfx | Xfy | Yfx))
+    OPERATORS
+        .iter()
+        .copied()
+        .find(|o| o.name == name && matches!(o.kind, Xfx | Xfy | Yfx))
 }
 
 /// The prefix operator with this name, if any.
 pub fn prefix(name: &str) -> Option<Op> {
-    OPERATORS.iter().copied().find(|o| o.name == name && matches!(o.kind, Fy | Fx))
+    OPERATORS
+        .iter()
+        .copied()
+        .find(|o| o.name == name && matches!(o.kind, Fy | Fx))
 }
 
 /// True when `name` is an operator of any kind.

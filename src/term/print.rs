@@ -16,17 +16,29 @@ pub struct Style {
 
 impl Style {
     /// `writeq/1`: quoted, with operators.
-    pub const WRITEQ: Style = Style { quoted: true, operators: true };
+    pub const WRITEQ: Style = Style {
+        quoted: true,
+        operators: true,
+    };
     /// `write/1` and `print/1`: unquoted, with operators.
-    pub const WRITE: Style = Style { quoted: false, operators: true };
+    pub const WRITE: Style = Style {
+        quoted: false,
+        operators: true,
+    };
     /// `write_canonical/1`: quoted, without operators.
-    pub const CANONICAL: Style = Style { quoted: true, operators: false };
+    pub const CANONICAL: Style = Style {
+        quoted: true,
+        operators: false,
+    };
 }
 
 impl Term {
     /// The term as text in the given style.
     pub fn to_text(&self, style: Style) -> String {
-        let mut w = Writer { out: String::new(), style };
+        let mut w = Writer {
+            out: String::new(),
+            style,
+        };
         w.term(self, 1200);
         w.out
     }
@@ -113,7 +125,8 @@ impl Writer {
     /// Appends a token, inserting a space when it would otherwise glue onto the previous token.
     fn token(&mut self, tok: &str) {
         if let (Some(prev), Some(next)) = (self.out.chars().last(), tok.chars().next()) {
-            let glue = (is_symbol_char(prev) && is_symbol_char(next)) || (is_alnum(prev) && is_alnum(next));
+            let glue = (is_symbol_char(prev) && is_symbol_char(next))
+                || (is_alnum(prev) && is_alnum(next));
             if glue {
                 self.out.push(' ');
             }
@@ -286,16 +299,41 @@ mod tests {
     fn operators_are_written_in_operator_form() {
         let x = Term::var("X");
         assert_eq!(c("=", vec![x.clone(), a("a")]).to_string(), "X=a");
-        assert_eq!(c("is", vec![x.clone(), c("+", vec![Term::Int(1), Term::Int(2)])]).to_string(), "X is 1+2");
+        assert_eq!(
+            c(
+                "is",
+                vec![x.clone(), c("+", vec![Term::Int(1), Term::Int(2)])]
+            )
+            .to_string(),
+            "X is 1+2"
+        );
         assert_eq!(c("-", vec![a("a"), Term::Int(-1)]).to_string(), "a- -1");
         assert_eq!(c("-", vec![Term::Int(1)]).to_string(), "- 1");
         assert_eq!(c("-", vec![a("a")]).to_string(), "-a");
-        assert_eq!(c("\\+", vec![c("p", vec![x.clone()])]).to_string(), "\\+p(X)");
-        assert_eq!(c("*", vec![c("+", vec![a("a"), a("b")]), a("c")]).to_string(), "(a+b)*c");
-        assert_eq!(c("-", vec![a("a"), c("-", vec![a("b"), a("c")])]).to_string(), "a- (b-c)");
-        assert_eq!(c("f", vec![c(",", vec![a("a"), a("b")])]).to_string(), "f((a,b))");
-        assert_eq!(c(":-", vec![a("h"), c(",", vec![a("a"), a("b")])]).to_string(), "h:-a,b");
-        assert_eq!(c("-", vec![c(",", vec![a("a"), a("b")])]).to_string(), "- (a,b)");
+        assert_eq!(
+            c("\\+", vec![c("p", vec![x.clone()])]).to_string(),
+            "\\+p(X)"
+        );
+        assert_eq!(
+            c("*", vec![c("+", vec![a("a"), a("b")]), a("c")]).to_string(),
+            "(a+b)*c"
+        );
+        assert_eq!(
+            c("-", vec![a("a"), c("-", vec![a("b"), a("c")])]).to_string(),
+            "a- (b-c)"
+        );
+        assert_eq!(
+            c("f", vec![c(",", vec![a("a"), a("b")])]).to_string(),
+            "f((a,b))"
+        );
+        assert_eq!(
+            c(":-", vec![a("h"), c(",", vec![a("a"), a("b")])]).to_string(),
+            "h:-a,b"
+        );
+        assert_eq!(
+            c("-", vec![c(",", vec![a("a"), a("b")])]).to_string(),
+            "- (a,b)"
+        );
     }
 
     #[test]
@@ -306,7 +344,10 @@ mod tests {
         assert_eq!(Term::string("say \"hi\"").to_string(), "\"say \\\"hi\\\"\"");
         assert_eq!(Term::from(25.0).to_string(), "25.0");
         assert_eq!(Term::from(1e22).to_string(), "1.0e22");
-        assert_eq!(c("{}", vec![c(",", vec![a("a"), a("b")])]).to_string(), "{a,b}");
+        assert_eq!(
+            c("{}", vec![c(",", vec![a("a"), a("b")])]).to_string(),
+            "{a,b}"
+        );
         assert_eq!(c("mod", vec![a("a")]).to_string(), "'mod'(a)");
     }
 }

@@ -21,7 +21,10 @@ impl Subst {
 
     /// The term bound to `var`, if any (not dereferenced further).
     pub fn get(&self, var: Sym) -> Option<&Term> {
-        self.bindings.iter().find(|(v, _)| *v == var).map(|(_, t)| t)
+        self.bindings
+            .iter()
+            .find(|(v, _)| *v == var)
+            .map(|(_, t)| t)
     }
 
     /// Binds `var` to `term`, replacing an earlier binding.
@@ -54,7 +57,14 @@ impl Subst {
 
     /// Keeps only the bindings of the given variables.
     pub fn restrict(&self, vars: &[Sym]) -> Subst {
-        Subst { bindings: self.bindings.iter().filter(|(v, _)| vars.contains(v)).cloned().collect() }
+        Subst {
+            bindings: self
+                .bindings
+                .iter()
+                .filter(|(v, _)| vars.contains(v))
+                .cloned()
+                .collect(),
+        }
     }
 
     /// Follows variable bindings until an unbound variable or a non-variable term.
@@ -79,7 +89,11 @@ impl Subst {
     fn apply_depth(&self, t: &Term, depth: usize) -> Term {
         match self.walk(t) {
             Term::Compound(c) if depth < 100_000 => {
-                let args: Vec<Term> = c.args.iter().map(|a| self.apply_depth(a, depth + 1)).collect();
+                let args: Vec<Term> = c
+                    .args
+                    .iter()
+                    .map(|a| self.apply_depth(a, depth + 1))
+                    .collect();
                 if args.iter().zip(c.args.iter()).all(|(new, old)| new == old) {
                     self.walk(t).clone()
                 } else {
@@ -105,7 +119,13 @@ impl Subst {
         ok
     }
 
-    fn unify_inner(&mut self, a: &Term, b: &Term, occurs_check: bool, snapshot: &mut Option<Vec<(Sym, Term)>>) -> bool {
+    fn unify_inner(
+        &mut self,
+        a: &Term,
+        b: &Term,
+        occurs_check: bool,
+        snapshot: &mut Option<Vec<(Sym, Term)>>,
+    ) -> bool {
         let mut stack = vec![(a.clone(), b.clone())];
         while let Some((x, y)) = stack.pop() {
             let x = self.walk(&x).clone();
@@ -156,15 +176,26 @@ mod tests {
     fn unify_binds_and_applies() {
         let mut s = Subst::new();
         let (x, y) = (Term::var("X"), Term::var("Y"));
-        assert!(s.unify(&f(vec![x.clone(), Term::atom("b")]), &f(vec![Term::atom("a"), y.clone()]), false));
-        assert_eq!(s.apply(&f(vec![x.clone(), y.clone()])), f(vec![Term::atom("a"), Term::atom("b")]));
+        assert!(s.unify(
+            &f(vec![x.clone(), Term::atom("b")]),
+            &f(vec![Term::atom("a"), y.clone()]),
+            false
+        ));
+        assert_eq!(
+            s.apply(&f(vec![x.clone(), y.clone()])),
+            f(vec![Term::atom("a"), Term::atom("b")])
+        );
     }
 
     #[test]
     fn failed_unification_leaves_substitution_unchanged() {
         let mut s = Subst::new();
         let x = Term::var("X");
-        assert!(!s.unify(&f(vec![x.clone(), Term::atom("b")]), &f(vec![Term::atom("a"), Term::atom("c")]), false));
+        assert!(!s.unify(
+            &f(vec![x.clone(), Term::atom("b")]),
+            &f(vec![Term::atom("a"), Term::atom("c")]),
+            false
+        ));
         assert!(s.is_empty());
     }
 

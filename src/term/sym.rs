@@ -15,9 +15,42 @@ struct Interner {
 
 /// Names interned at start-up, in this order, so that the constants below are fixed.
 const PREDEFINED: &[&str] = &[
-    "[]", ".", "{}", ",", ";", "->", "*->", "|", ":-", "-->", "?-", "\\+", "not", "true", "false",
-    "fail", "!", "-", "+", "*", "/", "=", "call", "is", "^", "end_of_file", "error", "[|]", "imp",
-    "int", "percept", "received", "sent", "agent", "me", "_",
+    "[]",
+    ".",
+    "{}",
+    ",",
+    ";",
+    "->",
+    "*->",
+    "|",
+    ":-",
+    "-->",
+    "?-",
+    "\\+",
+    "not",
+    "true",
+    "false",
+    "fail",
+    "!",
+    "-",
+    "+",
+    "*",
+    "/",
+    "=",
+    "call",
+    "is",
+    "^",
+    "end_of_file",
+    "error",
+    "[|]",
+    "imp",
+    "int",
+    "percept",
+    "received",
+    "sent",
+    "agent",
+    "me",
+    "_",
 ];
 
 /// Well-known symbols, interned at fixed positions of [`PREDEFINED`].
@@ -64,7 +97,10 @@ pub mod well_known {
 fn interner() -> &'static RwLock<Interner> {
     static INTERNER: OnceLock<RwLock<Interner>> = OnceLock::new();
     INTERNER.get_or_init(|| {
-        let mut interner = Interner { ids: HashMap::new(), names: Vec::new() };
+        let mut interner = Interner {
+            ids: HashMap::new(),
+            names: Vec::new(),
+        };
         for name in PREDEFINED {
             let sym = Sym(interner.names.len() as u32);
             interner.names.push(name);
@@ -80,7 +116,12 @@ impl Sym {
     /// Interned names live for the whole process (like atoms in most Prolog systems without
     /// atom garbage collection); programs create a bounded set of names in practice.
     pub fn intern(name: &str) -> Sym {
-        if let Some(sym) = interner().read().unwrap_or_else(|e| e.into_inner()).ids.get(name) {
+        if let Some(sym) = interner()
+            .read()
+            .unwrap_or_else(|e| e.into_inner())
+            .ids
+            .get(name)
+        {
             return *sym;
         }
         let mut guard = interner().write().unwrap_or_else(|e| e.into_inner());

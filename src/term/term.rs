@@ -79,7 +79,10 @@ impl Term {
         if args.is_empty() {
             Term::Atom(name)
         } else {
-            Term::Compound(Arc::new(Compound { name, args: args.into_boxed_slice() }))
+            Term::Compound(Arc::new(Compound {
+                name,
+                args: args.into_boxed_slice(),
+            }))
         }
     }
 
@@ -103,7 +106,10 @@ impl Term {
         items: impl IntoIterator<Item = Term, IntoIter: DoubleEndedIterator>,
         tail: Term,
     ) -> Term {
-        items.into_iter().rev().fold(tail, |acc, item| Term::cons(item, acc))
+        items
+            .into_iter()
+            .rev()
+            .fold(tail, |acc, item| Term::cons(item, acc))
     }
 
     /// The name and arity of an atom or compound (`None` for numbers, strings and variables).
@@ -130,7 +136,10 @@ impl Term {
 
     /// True when the term is an atom or a number.
     pub fn is_atomic(&self) -> bool {
-        matches!(self, Term::Atom(_) | Term::Int(_) | Term::Float(_) | Term::Str(_))
+        matches!(
+            self,
+            Term::Atom(_) | Term::Int(_) | Term::Float(_) | Term::Str(_)
+        )
     }
 
     /// True when the term is a variable.
@@ -309,7 +318,9 @@ mod tests {
     fn lists_round_trip_through_items() {
         let l = Term::list(vec![Term::atom("a"), Term::Int(1)]);
         assert_eq!(l.list_items().unwrap(), vec![Term::atom("a"), Term::Int(1)]);
-        assert!(Term::list_with_tail(vec![Term::atom("a")], Term::var("T")).list_items().is_none());
+        assert!(Term::list_with_tail(vec![Term::atom("a")], Term::var("T"))
+            .list_items()
+            .is_none());
     }
 
     #[test]
@@ -326,7 +337,10 @@ mod tests {
         ];
         ts.sort_by(|a, b| a.compare(b));
         let shown: Vec<String> = ts.iter().map(|t| t.to_string()).collect();
-        assert_eq!(shown, ["X", "2.5", "3", "a", "b", "\"s\"", "f(a)", "a(1,2)"]);
+        assert_eq!(
+            shown,
+            ["X", "2.5", "3", "a", "b", "\"s\"", "f(a)", "a(1,2)"]
+        );
         assert_eq!(Term::from(1.0).compare(&Term::Int(1)), Ordering::Less);
     }
 
@@ -340,7 +354,13 @@ mod tests {
 
     #[test]
     fn ground_vars_and_depth() {
-        let t = Term::compound("f", vec![Term::var("X"), Term::compound("g", vec![Term::var("Y"), Term::var("X")])]);
+        let t = Term::compound(
+            "f",
+            vec![
+                Term::var("X"),
+                Term::compound("g", vec![Term::var("Y"), Term::var("X")]),
+            ],
+        );
         assert!(!t.is_ground());
         assert_eq!(t.vars(), vec![Sym::intern("X"), Sym::intern("Y")]);
         assert_eq!(t.depth(), 3);
