@@ -7,3 +7,4 @@ pub mod goal;
 pub mod lexer;
 pub mod mas2g;
 pub mod prolog;
+pub mod test2g;

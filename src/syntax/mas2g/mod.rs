@@ -108,6 +108,9 @@ fn expected_list(expected: &[String]) -> String {
                 "Int" => "an integer".to_string(),
                 "Float" => "a number".to_string(),
                 "Str" => "a string".to_string(),
+                "KrParens" => "a `( ... )` argument list".to_string(),
+                "SelParens" => "a `( ... )` selector".to_string(),
+                "SelName" => "an agent-name selector".to_string(),
                 other => format!("`{}`", other.replace("\\\"", "\"")),
             }
         })
