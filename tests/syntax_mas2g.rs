@@ -103,4 +103,3 @@ fn garbage_never_panics() {
         }
     }
 }
-
