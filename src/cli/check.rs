@@ -1,6 +1,6 @@
 //! `goal check FILE... [--format json]`: parse and validate files, print diagnostics.
 
-use goal::syntax::check::{check_path, FileReport};
+use goal::syntax::check::{check_path_with_agents, FileReport};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -26,7 +26,12 @@ pub struct Args {
 
 /// Runs `goal check`: diagnostics on stdout, a summary line on stderr; exit 1 when any error.
 pub fn main(args: Args) -> ExitCode {
-    let reports: Vec<FileReport> = args.files.iter().map(|f| check_path(f)).collect();
+    // A .mas2g also checks the agent files it names.
+    let reports: Vec<FileReport> = args
+        .files
+        .iter()
+        .flat_map(|f| check_path_with_agents(f))
+        .collect();
     let (mut errors, mut warnings) = (0usize, 0usize);
     for r in &reports {
         for d in &r.diagnostics {

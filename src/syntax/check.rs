@@ -83,6 +83,18 @@ pub fn check_path(path: &Path) -> FileReport {
         "goal" => goal::parse_goal(&file, &source).1,
         "mod2g" => goal::parse_mod2g(&file, &source).1,
         "pl" => Reader::new(file.as_str()).clauses(&source, 0).1,
+        "mas2g" => {
+            let (mas, mut d) = crate::syntax::mas2g::parse(&source, &file);
+            d.extend(crate::syntax::mas2g::check_files(&mas, base_dir(path)));
+            d
+        }
+        "test2g" => {
+            let (test, mut d) = crate::syntax::test2g::parse(&source, &file);
+            if let Some(t) = &test {
+                d.extend(crate::syntax::test2g::check_files(t, base_dir(path)));
+            }
+            d
+        }
         _ => vec![Diagnostic::error(
             "E0024",
             format!("unknown kind of file `{file}`"),
@@ -96,4 +108,25 @@ pub fn check_path(path: &Path) -> FileReport {
         source,
         diagnostics,
     }
+}
+
+/// The directory that paths written in `path` are relative to.
+fn base_dir(path: &Path) -> &Path {
+    path.parent().unwrap_or(Path::new("."))
+}
+
+/// Checks one file and, for a `.mas2g`, also the agent files it names that exist (each once).
+pub fn check_path_with_agents(path: &Path) -> Vec<FileReport> {
+    let report = check_path(path);
+    let mut out = Vec::new();
+    if path.extension().and_then(|e| e.to_str()) == Some("mas2g") && !report.source.is_empty() {
+        let (mas, _) = crate::syntax::mas2g::parse(&report.source, &report.file);
+        for agent in crate::syntax::mas2g::check::agent_file_paths(&mas, base_dir(path)) {
+            if agent.is_file() && agent.extension().and_then(|e| e.to_str()) == Some("goal") {
+                out.push(check_path(&agent));
+            }
+        }
+    }
+    out.insert(0, report);
+    out
 }
