@@ -142,7 +142,7 @@ fn unterminated_things_are_diagnostics() {
         ("main module { /* never closed", "E0012"),
         ("if bel(p(X) then a.", "E0013"),
         ("knowledge { a. ", "E0013"),
-        ("main module { $ }", "E0010"),
+        ("main module { $ }", "E0009"),
         ("'open", "E0011"),
     ] {
         let (_, diags) = tokens(src, "t.goal");
