@@ -80,7 +80,14 @@ pub fn check_path(path: &Path) -> FileReport {
     };
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
     let diagnostics = match ext {
-        "goal" => goal::parse_goal(&file, &source).1,
+        "goal" => {
+            let (program, mut d) = goal::parse_goal(&file, &source);
+            d.extend(crate::syntax::validate::validate(
+                &program,
+                Some(base_dir(path)),
+            ));
+            d
+        }
         "mod2g" => goal::parse_mod2g(&file, &source).1,
         "pl" => Reader::new(file.as_str()).clauses(&source, 0).1,
         "mas2g" => {

@@ -5,7 +5,7 @@ use super::builtins::{is_builtin, is_reserved, protected_reason};
 use super::terms::{calls, conjuncts, Sub};
 use super::{Ctx, Key};
 use crate::diag::Span;
-use crate::syntax::ast::{ActionKind, LiteralKind};
+use crate::syntax::ast::{ActionKind, LiteralKind, SelectorKind};
 use crate::syntax::prolog::Located;
 use crate::term::Term;
 use std::collections::BTreeMap;
@@ -104,8 +104,13 @@ pub fn check(ctx: &mut Ctx<'_>) {
         }
     }
     for l in ctx.literals() {
-        if let LiteralKind::Mental { query: q, .. } = &l.kind {
-            query(&mut u, &mut kr_goals, Sub::of(q), true);
+        if let LiteralKind::Mental {
+            query: q, selector, ..
+        } = &l.kind
+        {
+            // Other agents' mental models hold their own predicates.
+            let own = matches!(selector.kind, SelectorKind::This | SelectorKind::SelfAgent);
+            query(&mut u, &mut kr_goals, Sub::of(q), own);
         }
     }
     for (_, a) in ctx.actions() {
