@@ -58,3 +58,20 @@ fn every_agent_program_validates_without_errors() {
         );
     }
 }
+
+#[test]
+fn negative_fixtures_report_their_code_at_the_expected_place() {
+    for (rel, code, line, col) in common::negative_fixtures("tests/fixtures/invalid", "goal") {
+        let (source, diags) = check(&rel);
+        common::assert_reported(&rel, &source, &diags, &code, line, col);
+        let stem = Path::new(&rel)
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("?")
+            .to_string();
+        insta::assert_snapshot!(
+            format!("validator_{stem}"),
+            common::render_all(&source, &diags)
+        );
+    }
+}

@@ -79,7 +79,8 @@ pub fn check(ctx: &mut Ctx<'_>) {
         }
         for g in &m.goals {
             for c in conjuncts(Sub::of(g)) {
-                if let Some(k) = key(c.term) {
+                // Negated or built-in conjuncts are reported by the variables checks (E0110).
+                if let Some(k) = key(c.term).filter(|k| !is_builtin(&k.0, k.1)) {
                     u.goals.entry(k).or_insert(c.span.clone());
                 }
                 kr_goals.push(c);
