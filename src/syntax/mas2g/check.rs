@@ -66,7 +66,9 @@ pub fn check_files(mas: &MasFile, base_dir: &Path) -> Vec<Diagnostic> {
             );
         }
         let name = f.reference_name();
-        if refs.contains_key(&name) {
+        if let std::collections::btree_map::Entry::Vacant(e) = refs.entry(name.clone()) {
+            e.insert(i);
+        } else {
             let span = f
                 .name
                 .as_ref()
@@ -80,8 +82,6 @@ pub fn check_files(mas: &MasFile, base_dir: &Path) -> Vec<Diagnostic> {
                 )
                 .with_hint("give one of the files a different `[name = ...]`"),
             );
-        } else {
-            refs.insert(name, i);
         }
     }
     let mut launched = vec![false; mas.agent_files.len()];

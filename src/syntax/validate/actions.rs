@@ -2,11 +2,11 @@
 //! calls of undefined actions or modules and arity mismatches, `_` arguments, update contents,
 //! send receivers, and actions after `exit-module`.
 
-use super::terms::{conjuncts, is_anonymous, var_name, var_occurrences, Sub};
+use super::terms::{conjuncts, is_anonymous, var_name, var_occurrences, var_set, Sub, VarSet};
 use super::{call_key, Ctx, Key};
 use crate::syntax::ast::{ActionKind, RuleBody, SelectorKind};
 use crate::syntax::prolog::Located;
-use crate::term::Sym;
+use std::collections::BTreeSet;
 
 /// Runs the action checks.
 pub fn check(ctx: &mut Ctx<'_>) {
@@ -18,10 +18,10 @@ pub fn check(ctx: &mut Ctx<'_>) {
 
 /// Reports parameters that occur twice (`what` is "action" or "module").
 pub fn duplicate_params(ctx: &mut Ctx<'_>, params: &[Located], what: &str) {
-    let mut seen: Vec<Sym> = Vec::new();
+    let mut seen = VarSet::new();
     for p in params {
         if let crate::term::Term::Var(v) = &p.term {
-            if seen.contains(v) && !is_anonymous(*v) {
+            if !seen.insert(*v) && !is_anonymous(*v) {
                 ctx.error(
                     "E0106",
                     format!("parameter `{}` occurs twice in the {what} head", v.name()),
@@ -29,7 +29,6 @@ pub fn duplicate_params(ctx: &mut Ctx<'_>, params: &[Located], what: &str) {
                     "parameters must be distinct variables",
                 );
             }
-            seen.push(*v);
         }
     }
 }
@@ -40,7 +39,7 @@ fn specs(ctx: &mut Ctx<'_>) {
         .iter()
         .map(|(k, v)| (k.clone(), v.clone()))
         .collect();
-    let used: Vec<Key> = ctx
+    let used: BTreeSet<Key> = ctx
         .actions()
         .into_iter()
         .filter_map(|(_, a)| call_key(a).map(|(k, _)| k))
@@ -78,10 +77,12 @@ fn specs(ctx: &mut Ctx<'_>) {
 
 fn spec(ctx: &mut Ctx<'_>, s: &crate::syntax::ast::ActionSpec) {
     let name = s.name.name.name();
-    let mut params: Vec<Sym> = Vec::new();
+    let mut params = VarSet::new();
     for p in &s.params {
         match &p.term {
-            crate::term::Term::Var(v) => params.push(*v),
+            crate::term::Term::Var(v) => {
+                params.insert(*v);
+            }
             other => ctx.error(
                 "E0108",
                 format!("parameter `{other}` of action `{name}` is not a variable"),
@@ -101,7 +102,7 @@ fn spec(ctx: &mut Ctx<'_>, s: &crate::syntax::ast::ActionSpec) {
             );
         }
     }
-    let pre_vars = s.pre.term.term.vars();
+    let pre_vars = var_set(&s.pre.term.term);
     for (v, span) in var_occurrences(&s.post.term) {
         if !params.contains(&v) && !pre_vars.contains(&v) {
             ctx.error(
@@ -113,7 +114,7 @@ fn spec(ctx: &mut Ctx<'_>, s: &crate::syntax::ast::ActionSpec) {
             break;
         }
     }
-    let post_vars = s.post.term.term.vars();
+    let post_vars = var_set(&s.post.term.term);
     for p in &s.params {
         if let crate::term::Term::Var(v) = &p.term {
             if !is_anonymous(*v) && !pre_vars.contains(v) && !post_vars.contains(v) {

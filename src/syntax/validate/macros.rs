@@ -1,10 +1,11 @@
 //! `#define` macros: duplicates, ill-formed definitions (a parameter that is not a variable or
 //! does not occur in the body), uses of undefined macros, and unused macros.
 
-use super::terms::is_anonymous;
+use super::terms::{is_anonymous, var_set, VarSet};
 use super::{macro_use_key, Ctx, Key};
 use crate::syntax::ast::{LiteralKind, Macro};
-use crate::term::{Sym, Term};
+use crate::term::Term;
+use std::collections::BTreeSet;
 
 /// Runs the macro checks.
 pub fn check(ctx: &mut Ctx<'_>) {
@@ -13,7 +14,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
         .iter()
         .map(|(k, v)| (k.clone(), v.clone()))
         .collect();
-    let uses: Vec<Key> = ctx
+    let uses: BTreeSet<Key> = ctx
         .literals()
         .into_iter()
         .filter_map(macro_use_key)
@@ -76,22 +77,22 @@ pub fn check(ctx: &mut Ctx<'_>) {
 }
 
 fn well_formed(ctx: &mut Ctx<'_>, d: &Macro) {
-    let mut body_vars: Vec<Sym> = Vec::new();
+    let mut body_vars = VarSet::new();
     for l in &d.body {
         match &l.kind {
             LiteralKind::Mental {
                 query, selector, ..
             } => {
-                body_vars.extend(query.term.vars());
+                body_vars.extend(var_set(&query.term));
                 if let crate::syntax::ast::SelectorKind::Agents(ts) = &selector.kind {
                     for t in ts {
-                        body_vars.extend(t.term.vars());
+                        body_vars.extend(var_set(&t.term));
                     }
                 }
             }
             LiteralKind::MacroUse { args, .. } => {
                 for a in args {
-                    body_vars.extend(a.term.vars());
+                    body_vars.extend(var_set(&a.term));
                 }
             }
             LiteralKind::True => {}

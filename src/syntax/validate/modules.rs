@@ -127,7 +127,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
         }
     }
     // Unused user modules (never called by a rule).
-    let called: Vec<_> = ctx
+    let called: std::collections::BTreeSet<_> = ctx
         .actions()
         .into_iter()
         .filter_map(|(_, a)| call_key(a).map(|(k, _)| k))

@@ -148,10 +148,9 @@ pub fn check(ctx: &mut Ctx<'_>) {
             || is_reserved(&k.0, k.1)
             || protected_reason(&k.0).is_some()
     };
-    let mut reported: Vec<&Key> = Vec::new();
+    let mut reported: std::collections::BTreeSet<&Key> = Default::default();
     for (k, span) in &u.queries {
-        if !defined(k) && !reported.contains(&k) {
-            reported.push(k);
+        if !defined(k) && reported.insert(k) {
             ctx.error(
                 "E0121",
                 format!(

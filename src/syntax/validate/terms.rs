@@ -4,6 +4,20 @@
 use crate::diag::Span;
 use crate::syntax::prolog::{Located, TermSpans};
 use crate::term::{Sym, Term};
+use std::collections::BTreeSet;
+
+/// A set of variables (membership only: never iterated into output, since `Sym` ids depend on
+/// interning order).
+pub type VarSet = BTreeSet<Sym>;
+
+/// The variables of `t`.
+pub fn var_set(t: &Term) -> VarSet {
+    let mut out = VarSet::new();
+    t.for_each_var(&mut |v| {
+        out.insert(v);
+    });
+    out
+}
 
 /// A subterm with the span it was read from (the parent's span when spans are missing).
 pub type At<'a> = (&'a Term, Span);
@@ -180,15 +194,13 @@ pub fn calls(s: Sub<'_>) -> Vec<(Sub<'_>, Polarity)> {
     out
 }
 
-/// The variables a query binds: those not only under negation (in textual order, no repeats).
-pub fn binding_vars(loc: &Located) -> Vec<Sym> {
-    let mut out: Vec<Sym> = Vec::new();
+/// The variables a query binds: those not only under negation.
+pub fn binding_vars(loc: &Located) -> VarSet {
+    let mut out = VarSet::new();
     for (c, pol) in calls(Sub::of(loc)) {
         if pol == Polarity::Positive {
             c.term.for_each_var(&mut |v| {
-                if !out.contains(&v) {
-                    out.push(v)
-                }
+                out.insert(v);
             });
         }
     }

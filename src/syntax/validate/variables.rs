@@ -2,7 +2,9 @@
 //! the listall variable, module parameters or enclosing rules; variables in `beliefs`/`goals`
 //! only by module parameters; `goals` entries are positive conjunctions.
 
-use super::terms::{binding_vars, conjuncts, is_anonymous, var_name, var_occurrences, Sub};
+use super::terms::{
+    binding_vars, conjuncts, is_anonymous, var_name, var_occurrences, var_set, Sub, VarSet,
+};
 use super::Ctx;
 use crate::syntax::ast::{
     Action, ActionKind, Literal, LiteralKind, Module, ModuleKind, Mood, Rule, RuleBody, RuleKind,
@@ -14,9 +16,11 @@ use crate::term::Sym;
 /// Runs the variable checks.
 pub fn check(ctx: &mut Ctx<'_>) {
     for m in ctx.modules.clone() {
-        let params: Vec<Sym> = match &m.kind {
-            ModuleKind::User { params, .. } => params.iter().flat_map(|p| p.term.vars()).collect(),
-            _ => Vec::new(),
+        let params: VarSet = match &m.kind {
+            ModuleKind::User { params, .. } => {
+                params.iter().flat_map(|p| var_set(&p.term)).collect()
+            }
+            _ => VarSet::new(),
         };
         sections(ctx, m, &params);
         if let Some(p) = &m.program {
@@ -27,7 +31,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
     }
 }
 
-fn sections(ctx: &mut Ctx<'_>, m: &Module, params: &[Sym]) {
+fn sections(ctx: &mut Ctx<'_>, m: &Module, params: &VarSet) {
     let unbound_hint = if matches!(m.kind, ModuleKind::User { .. }) {
         "only module parameters may occur as variables here; use a ground term"
     } else {
@@ -93,7 +97,7 @@ fn sections(ctx: &mut Ctx<'_>, m: &Module, params: &[Sym]) {
 }
 
 /// Variables of a selector that are not yet bound (reported as E0114).
-fn selector(ctx: &mut Ctx<'_>, s: &Selector, bound: &[Sym]) {
+fn selector(ctx: &mut Ctx<'_>, s: &Selector, bound: &VarSet) {
     if let SelectorKind::Agents(ts) = &s.kind {
         for t in ts {
             if let Some((v, span)) = var_occurrences(t)
@@ -112,8 +116,8 @@ fn selector(ctx: &mut Ctx<'_>, s: &Selector, bound: &[Sym]) {
 }
 
 /// Binds the variables of the condition literals in order; returns the bound set after them.
-fn condition(ctx: &mut Ctx<'_>, lits: &[Literal], bound: &[Sym]) -> Vec<Sym> {
-    let mut bound = bound.to_vec();
+fn condition(ctx: &mut Ctx<'_>, lits: &[Literal], bound: &VarSet) -> VarSet {
+    let mut bound = bound.clone();
     for l in lits {
         match &l.kind {
             LiteralKind::Mental {
@@ -129,7 +133,7 @@ fn condition(ctx: &mut Ctx<'_>, lits: &[Literal], bound: &[Sym]) -> Vec<Sym> {
             }
             LiteralKind::MacroUse { args, .. } => {
                 for a in args {
-                    bound.extend(a.term.vars());
+                    bound.extend(var_set(&a.term));
                 }
             }
             LiteralKind::True => {}
@@ -138,12 +142,12 @@ fn condition(ctx: &mut Ctx<'_>, lits: &[Literal], bound: &[Sym]) -> Vec<Sym> {
     bound
 }
 
-fn rule(ctx: &mut Ctx<'_>, r: &Rule, outer: &[Sym]) {
+fn rule(ctx: &mut Ctx<'_>, r: &Rule, outer: &VarSet) {
     let after = condition(ctx, &r.condition, outer);
-    let body_bound: Vec<Sym> = match &r.kind {
+    let body_bound: VarSet = match &r.kind {
         RuleKind::Listall { var } => {
-            let mut b = outer.to_vec();
-            b.extend(var.term.vars());
+            let mut b = outer.clone();
+            b.extend(var_set(&var.term));
             b
         }
         _ => after,
@@ -162,10 +166,10 @@ fn rule(ctx: &mut Ctx<'_>, r: &Rule, outer: &[Sym]) {
     }
 }
 
-fn unbound(ctx: &mut Ctx<'_>, t: &Located, bound: &[Sym], kind: &RuleKind, skip_anonymous: bool) {
+fn unbound(ctx: &mut Ctx<'_>, t: &Located, bound: &VarSet, kind: &RuleKind, skip_anonymous: bool) {
     let found = var_occurrences(t)
         .into_iter()
-        .find(|(v, _)| !bound.contains(v) && !(skip_anonymous && is_anonymous(*v)));
+        .find(|(v, _)| !(bound.contains(v) || skip_anonymous && is_anonymous(*v)));
     if let Some((v, span)) = found {
         let hint = match kind {
             RuleKind::Listall { .. } => {
@@ -185,7 +189,7 @@ fn unbound(ctx: &mut Ctx<'_>, t: &Located, bound: &[Sym], kind: &RuleKind, skip_
     }
 }
 
-fn action(ctx: &mut Ctx<'_>, a: &Action, bound: &[Sym], kind: &RuleKind) {
+fn action(ctx: &mut Ctx<'_>, a: &Action, bound: &VarSet, kind: &RuleKind) {
     match &a.kind {
         ActionKind::Adopt {
             selector: s,
