@@ -75,3 +75,105 @@ fn negative_fixtures_report_their_code_at_the_expected_place() {
         );
     }
 }
+
+/// The codes (with line:column) the validator gives for a program text.
+fn codes(src: &str) -> Vec<String> {
+    let (program, parse) = parse_goal("t.goal", src);
+    assert!(
+        parse.iter().all(|d| !d.is_error()),
+        "parse errors: {parse:?}"
+    );
+    validate(&program, None)
+        .iter()
+        .map(|d| {
+            let (l, c) = d.line_col(src);
+            format!("{} {l}:{c}", d.code)
+        })
+        .collect()
+}
+
+fn main_with(rules: &str) -> String {
+    format!(
+        "main module {{\n  beliefs {{ p(1). q. agent_at(a). }}\n  program {{\n{rules}\n  }}\n}}\n\
+         event module {{ program {{ if bel(q, p(_), agent_at(_)) then print(ok). }} }}\n"
+    )
+}
+
+#[test]
+fn listall_binds_only_its_list_variable() {
+    assert!(codes(&main_with(
+        "if true then print(x). listall L <- bel(p(X)) do print(L)."
+    ))
+    .is_empty());
+    let c = codes(&main_with("listall L <- bel(p(X)) do print(X).")).join(" ");
+    assert!(c.contains("E0113 4:33"), "{c}");
+}
+
+#[test]
+fn interrogative_sends_may_keep_free_variables() {
+    assert!(codes(&main_with("if bel(q) then all.send(?p(X)).")).is_empty());
+    let c = codes(&main_with("if bel(q) then all.send(p(X)).")).join(" ");
+    assert!(c.contains("E0113 4:27"), "{c}");
+}
+
+#[test]
+fn nested_blocks_and_macros_bind_variables() {
+    let src = main_with(
+        "#define at(X) bel(agent_at(X)).\nif bel(p(X)) then { if at(Y) then print(f(X, Y)). }",
+    );
+    assert!(codes(&src).is_empty(), "{:?}", codes(&src));
+}
+
+#[test]
+fn negation_binds_nothing() {
+    let c = codes(&main_with("if not(bel(p(X))) then print(X).")).join(" ");
+    assert!(c.contains("E0113 4:30"), "{c}");
+    let c = codes(&main_with("if bel(\\+ p(X)) then print(X).")).join(" ");
+    assert!(c.contains("E0113"), "{c}");
+}
+
+#[test]
+fn selectors_of_sends_need_bound_variables() {
+    assert!(codes(&main_with("if bel(agent_at(A)) then (A).send(q).")).is_empty());
+    let c = codes(&main_with("if bel(q) then (B).send(q).")).join(" ");
+    assert!(c.contains("E0114 4:17"), "{c}");
+}
+
+#[test]
+fn module_parameters_are_bound_in_rules_and_goals() {
+    let src = "main module { program { if bel(p(R)) then go(R). } }\n\
+               module go(Room) { goals { at(Room). } program { if a-goal(at(Room)) then print(Room). } }\n\
+               event module { program { if bel(q) then insert(p(1)). } }\n\
+               init module { beliefs { q. } }\n";
+    assert!(codes(src).is_empty(), "{:?}", codes(src));
+}
+
+#[test]
+fn reserved_and_builtin_predicates_need_no_definition() {
+    let src = main_with(
+        "if bel(percept(x), received(S, M), sent(S, M), me(Me), agent(A), member(A, [a]), \
+         findall(Z, p(Z), L), length(L, N), N > 0) then print(f(Me, A)).",
+    );
+    assert!(codes(&src).is_empty(), "{:?}", codes(&src));
+}
+
+#[test]
+fn undefined_predicates_are_reported_once_where_first_queried() {
+    let c = codes(&main_with(
+        "if bel(r(X)) then print(X). if bel(r(Y)) then print(Y).",
+    ))
+    .join(" ");
+    assert_eq!(c.matches("E0121").count(), 1, "{c}");
+    assert!(c.contains("E0121 4:8"), "{c}");
+}
+
+#[test]
+fn inserted_and_posted_predicates_count_as_defined() {
+    let src =
+        main_with("if bel(q) then insert(seen(1)) + mark. if bel(seen(X), marked) then print(X).")
+            .replace(
+                "  }\n}\nevent",
+                "  }\n  actionspec { mark @int { pre { q } post { marked } } }\n}\nevent",
+            );
+    assert!(codes(&src).is_empty(), "{:?}", codes(&src));
+}
