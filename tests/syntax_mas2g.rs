@@ -103,3 +103,69 @@ fn garbage_never_panics() {
         }
     }
 }
+
+#[test]
+fn mutated_fixtures_never_panic_and_spans_stay_in_the_file() {
+    use rand::{Rng, SeedableRng};
+    let tokens = [
+        "{",
+        "}",
+        "[",
+        "]",
+        "(",
+        ")",
+        ".",
+        ",",
+        ":",
+        "*",
+        "+",
+        "=",
+        "\"",
+        "'",
+        "%",
+        "/*",
+        "*/",
+        "@env",
+        "launch ",
+        "when ",
+        "entity",
+        " do ",
+        "max",
+        "type",
+        "name",
+        "environment",
+        "agentfiles",
+        "launchpolicy",
+        "-",
+        "9999999999999999999999",
+        "1.5",
+        "é",
+        "\0",
+        "\n",
+    ];
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = root.join("tests/fixtures/mas2g");
+    let mut corpus: Vec<Vec<u8>> = Vec::new();
+    for sub in [dir.clone(), dir.join("invalid")] {
+        let mut names: Vec<_> = std::fs::read_dir(&sub)
+            .expect("fixtures")
+            .filter_map(|e| e.ok())
+            .map(|e| e.path())
+            .collect();
+        names.sort();
+        corpus.extend(
+            names
+                .into_iter()
+                .filter(|p| p.extension().is_some_and(|e| e == "mas2g"))
+                .map(|p| std::fs::read(p).expect("fixture")),
+        );
+    }
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0x3a52);
+    for _ in 0..30_000 {
+        let pick = rng.gen_range(0..corpus.len());
+        let src = common::mutate(&mut rng, &corpus[pick], &tokens);
+        let (mas, mut diags) = mas2g::parse(&src, "m.mas2g");
+        diags.extend(mas2g::check_files(&mas, &dir));
+        common::assert_spans_inside("m.mas2g", &src, &diags);
+    }
+}

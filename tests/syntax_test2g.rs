@@ -97,3 +97,71 @@ fn garbage_never_panics() {
         }
     }
 }
+
+#[test]
+fn mutated_fixtures_never_panic_and_spans_stay_in_the_file() {
+    use rand::{Rng, SeedableRng};
+    let tokens = [
+        "{",
+        "}",
+        "(",
+        ")",
+        ".",
+        ",",
+        ":",
+        "+",
+        "->",
+        "\"",
+        "'",
+        "%",
+        "/*",
+        "*/",
+        "do(",
+        "not(",
+        "reactTo(",
+        "evaluate {",
+        " in do ",
+        "until ",
+        "while ",
+        "always ",
+        "never ",
+        "eventually ",
+        "atend ",
+        "watch ",
+        "assert ",
+        "bel(",
+        "masTest",
+        "mas = ",
+        "timeout = ",
+        "é",
+        "\0",
+        "\n",
+    ];
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/test2g");
+    let mut corpus: Vec<Vec<u8>> = Vec::new();
+    for sub in [dir.clone(), dir.join("invalid")] {
+        let mut names: Vec<_> = std::fs::read_dir(&sub)
+            .expect("fixtures")
+            .filter_map(|e| e.ok())
+            .map(|e| e.path())
+            .collect();
+        names.sort();
+        corpus.extend(
+            names
+                .into_iter()
+                .filter(|p| p.extension().is_some_and(|e| e == "test2g"))
+                .map(|p| std::fs::read(p).expect("fixture")),
+        );
+    }
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0x7e57);
+    for i in 0..30_000 {
+        let pick = rng.gen_range(0..corpus.len());
+        let src = common::mutate(&mut rng, &corpus[pick], &tokens);
+        let (test, mut diags) = test2g::parse(&src, "t.test2g");
+        // The file-system checks read the MAS file: run them on a sample only.
+        if let (Some(t), true) = (&test, i % 20 == 0) {
+            diags.extend(test2g::check_files(t, &dir));
+        }
+        common::assert_spans_inside("t.test2g", &src, &diags);
+    }
+}

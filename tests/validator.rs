@@ -177,3 +177,57 @@ fn inserted_and_posted_predicates_count_as_defined() {
             );
     assert!(codes(&src).is_empty(), "{:?}", codes(&src));
 }
+
+#[test]
+fn mutated_programs_never_panic_in_the_validator() {
+    use rand::{Rng, SeedableRng};
+    let tokens = [
+        "X",
+        "_",
+        "Y",
+        "(",
+        ")",
+        ",",
+        ".",
+        "not(",
+        "bel(",
+        "goal(",
+        "a-goal(",
+        "insert(",
+        "delete(",
+        "adopt(",
+        "drop(",
+        "send(",
+        "?",
+        "!",
+        " + ",
+        "exit-module",
+        "assert(",
+        "\\+ ",
+        ";",
+        ":-",
+        "#define m(Z) bel(Z).",
+        "listall L <- ",
+        " then ",
+        "module m(A) {",
+        "}",
+        "{",
+    ];
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    goal_files(&root.join("agents"), &mut files);
+    goal_files(&root.join("tests/fixtures/goal"), &mut files);
+    goal_files(&root.join("tests/fixtures/invalid"), &mut files);
+    let corpus: Vec<Vec<u8>> = files
+        .iter()
+        .map(|f| std::fs::read(f).expect("corpus"))
+        .collect();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0x7a1d);
+    for _ in 0..10_000 {
+        let pick = rng.gen_range(0..corpus.len());
+        let src = common::mutate(&mut rng, &corpus[pick], &tokens);
+        let (program, mut diags) = parse_goal("v.goal", &src);
+        diags.extend(validate(&program, None));
+        common::assert_spans_inside("v.goal", &src, &diags);
+    }
+}
