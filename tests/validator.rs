@@ -142,7 +142,7 @@ fn selectors_of_sends_need_bound_variables() {
 #[test]
 fn module_parameters_are_bound_in_rules_and_goals() {
     let src = "main module { program { if bel(p(R)) then go(R). } }\n\
-               module go(Room) { goals { at(Room). } program { if a-goal(at(Room)) then print(Room). } }\n\
+               module go(Room) { goals { at(Room). } program { if a-goal(at(Room)) then insert(at(Room)). } }\n\
                event module { program { if bel(q) then insert(p(1)). } }\n\
                init module { beliefs { q. } }\n";
     assert!(codes(src).is_empty(), "{:?}", codes(src));

@@ -80,6 +80,7 @@ pub const CODES: &[(&str, &str)] = &[
     ("W0109", "a `focus` option on a built-in module (ignored)"),
     ("W0110", "a knowledge or belief predicate is never queried"),
     ("W0111", "a goal predicate is never queried"),
+    ("W0112", "a goal can never be achieved: nothing makes its predicate believed"),
     ("W0201", "duplicate .mas2g section: only the first one is used"),
     ("W0202", "duplicate `env`, `init` or init parameter: the first one is used"),
     ("W0203", "`environment` section without `env` (ignored)"),

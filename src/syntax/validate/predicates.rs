@@ -18,6 +18,10 @@ struct Uses {
     goals: BTreeMap<Key, Span>,
     /// Defined by updates (post, insert, adopt) or imported knowledge: no span needed.
     other: BTreeMap<Key, ()>,
+    /// Predicates that can become believed: knowledge, beliefs, post and insert updates.
+    believable: BTreeMap<Key, ()>,
+    /// Predicates adopted as goals by `adopt` actions (first place).
+    adopted: BTreeMap<Key, Span>,
     /// Queries in this file, in order.
     queries: Vec<(Key, Span)>,
     /// Predicates queried somewhere (this file or imported knowledge).
@@ -88,13 +92,14 @@ pub fn check(ctx: &mut Ctx<'_>) {
         }
         for s in &m.action_specs {
             query(&mut u, &mut kr_goals, Sub::of(&s.pre.term), true);
-            update(&mut u, &mut kr_goals, &s.post.term, true);
+            update(&mut u, &mut kr_goals, &s.post.term, Defines::Belief);
         }
     }
     for c in &ctx.imported_knowledge {
         let (head, body) = clause_parts(c);
         if let Some(k) = head.and_then(|h| key(h.term)) {
-            u.other.insert(k, ());
+            u.other.insert(k.clone(), ());
+            u.believable.insert(k, ());
         }
         if let Some(b) = body {
             for (call, _) in calls(b) {
@@ -116,10 +121,15 @@ pub fn check(ctx: &mut Ctx<'_>) {
     }
     for (_, a) in ctx.actions() {
         match &a.kind {
-            ActionKind::Insert { content, .. } | ActionKind::Adopt { content, .. } => {
-                update(&mut u, &mut kr_goals, content, true)
+            ActionKind::Insert { content, .. } => {
+                update(&mut u, &mut kr_goals, content, Defines::Belief)
             }
-            ActionKind::Delete { content, .. } => update(&mut u, &mut kr_goals, content, false),
+            ActionKind::Adopt { content, .. } => {
+                update(&mut u, &mut kr_goals, content, Defines::Goal)
+            }
+            ActionKind::Delete { content, .. } => {
+                update(&mut u, &mut kr_goals, content, Defines::Nothing)
+            }
             // drop removes the goals that entail its content: a goal query.
             ActionKind::Drop { content, .. } => {
                 query(&mut u, &mut kr_goals, Sub::of(content), false)
@@ -196,6 +206,33 @@ pub fn check(ctx: &mut Ctx<'_>) {
             );
         }
     }
+    unachievable(ctx, &u);
+}
+
+/// Warns about goals whose predicate nothing can make believed (they are never achieved).
+fn unachievable(ctx: &mut Ctx<'_>, u: &Uses) {
+    let goals = u
+        .goals
+        .iter()
+        .chain(u.adopted.iter().filter(|(k, _)| !u.goals.contains_key(*k)));
+    for (k, span) in goals {
+        let believable = u.believable.contains_key(k)
+            || u.knowledge.contains_key(k)
+            || u.beliefs.contains_key(k)
+            || is_reserved(&k.0, k.1)
+            || is_builtin(&k.0, k.1);
+        if !believable {
+            ctx.warning(
+                "W0112",
+                format!(
+                    "goal `{}/{}` can never be achieved: nothing makes it believed",
+                    k.0, k.1
+                ),
+                span.clone(),
+                "insert it (or derive it in knowledge) when it holds, so the goal is dropped",
+            );
+        }
+    }
 }
 
 /// Records the predicate calls of query `q` (reported if undefined when `report`).
@@ -211,8 +248,16 @@ fn query<'a>(u: &mut Uses, kr_goals: &mut Vec<Sub<'a>>, q: Sub<'a>, report: bool
     }
 }
 
-/// Records the literals of update `t`; positive ones define predicates when `defines`.
-fn update<'a>(u: &mut Uses, kr_goals: &mut Vec<Sub<'a>>, t: &'a Located, defines: bool) {
+/// What the positive literals of an update define.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Defines {
+    Nothing,
+    Belief,
+    Goal,
+}
+
+/// Records the literals of update `t` and what its positive literals define.
+fn update<'a>(u: &mut Uses, kr_goals: &mut Vec<Sub<'a>>, t: &'a Located, defines: Defines) {
     for c in conjuncts(Sub::of(t)) {
         let lit = if c
             .term
@@ -221,9 +266,12 @@ fn update<'a>(u: &mut Uses, kr_goals: &mut Vec<Sub<'a>>, t: &'a Located, defines
         {
             c.arg(0)
         } else {
-            if defines {
-                if let Some(k) = key(c.term) {
-                    u.other.insert(k, ());
+            if let Some(k) = key(c.term).filter(|_| defines != Defines::Nothing) {
+                u.other.insert(k.clone(), ());
+                if defines == Defines::Belief {
+                    u.believable.insert(k, ());
+                } else {
+                    u.adopted.entry(k).or_insert(c.span.clone());
                 }
             }
             Some(c)
