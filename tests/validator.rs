@@ -231,3 +231,22 @@ fn mutated_programs_never_panic_in_the_validator() {
         common::assert_spans_inside("v.goal", &src, &diags);
     }
 }
+
+#[test]
+fn prolog_files_reject_protected_predicates_and_directives() {
+    let src = "ok(X) :- member(X, [a]), retract(seen(X)).\n:- seen(a).\nfine(a).\n";
+    let (clauses, parse) = goal::syntax::prolog::Reader::new("k.pl").clauses(src, 0);
+    assert!(parse.is_empty(), "{parse:?}");
+    let diags = goal::syntax::validate::validate_prolog(&clauses, "k.pl");
+    let found: Vec<(String, (usize, usize))> = diags
+        .iter()
+        .map(|d| (d.code.clone(), d.line_col(src)))
+        .collect();
+    assert_eq!(
+        found,
+        vec![
+            ("E0123".to_string(), (1, 26)),
+            ("E0123".to_string(), (2, 1))
+        ]
+    );
+}

@@ -89,7 +89,11 @@ pub fn check_path(path: &Path) -> FileReport {
             d
         }
         "mod2g" => goal::parse_mod2g(&file, &source).1,
-        "pl" => Reader::new(file.as_str()).clauses(&source, 0).1,
+        "pl" => {
+            let (clauses, mut d) = Reader::new(file.as_str()).clauses(&source, 0);
+            d.extend(crate::syntax::validate::validate_prolog(&clauses, &file));
+            d
+        }
         "mas2g" => {
             let (mas, mut d) = crate::syntax::mas2g::parse(&source, &file);
             d.extend(crate::syntax::mas2g::check_files(&mas, base_dir(path)));

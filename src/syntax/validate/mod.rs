@@ -148,6 +148,11 @@ pub fn macro_use_key(l: &Literal) -> Option<Key> {
     }
 }
 
+/// Checks the clauses of a standalone `.pl` file: protected predicates and directives.
+pub fn validate_prolog(clauses: &[Located], file: &str) -> Vec<Diagnostic> {
+    predicates::check_prolog_clauses(clauses, file)
+}
+
 /// Validates `program`; `base_dir` is the directory that `#import` paths are relative to (no
 /// file checks when `None`). Returns every error and warning, sorted by position.
 pub fn validate(program: &AgentProgram, base_dir: Option<&Path>) -> Vec<Diagnostic> {

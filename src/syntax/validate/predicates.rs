@@ -281,3 +281,44 @@ fn update<'a>(u: &mut Uses, kr_goals: &mut Vec<Sub<'a>>, t: &'a Located, defines
         }
     }
 }
+
+/// Protected names and directives in the clauses of a standalone `.pl` file.
+pub fn check_prolog_clauses(clauses: &[Located], file: &str) -> Vec<crate::diag::Diagnostic> {
+    use crate::diag::Diagnostic;
+    let mut diags = Vec::new();
+    for c in clauses {
+        let (head, body) = clause_parts(c);
+        if head.is_none() {
+            diags.push(
+                Diagnostic::error(
+                    "E0123",
+                    format!("directive `{}` in a Prolog file", c.term),
+                    file,
+                    c.spans.span.clone(),
+                )
+                .with_hint("directives are not supported; GOAL declares predicates itself"),
+            );
+            continue;
+        }
+        let mut goals: Vec<Sub<'_>> = head.into_iter().collect();
+        if let Some(b) = body {
+            goals.extend(calls(b).into_iter().map(|(g, _)| g));
+        }
+        for g in goals {
+            if let Some((n, a)) = g.term.functor() {
+                if let Some(why) = protected_reason(n.name()) {
+                    diags.push(
+                        Diagnostic::error(
+                            "E0123",
+                            format!("`{}/{a}` may not be used in KR content", n.name()),
+                            file,
+                            g.span.clone(),
+                        )
+                        .with_hint(why),
+                    );
+                }
+            }
+        }
+    }
+    diags
+}
