@@ -64,6 +64,7 @@ pub const CODES: &[(&str, &str)] = &[
     ("E0306", "a tested agent is not launched by the MAS file"),
     ("E0307", "agents of one test file have different numbers of named tests"),
     ("E0308", "the MAS file of a test has errors"),
+    ("E0033", "too many problems in one file: the rest are not reported"),
     ("W0001", "duplicate section: only the first one is used"),
     ("W0002", "legacy send form (`bob.send(p)` or `send(bob, p)`)"),
     ("W0003", "unknown module option (ignored)"),
@@ -89,6 +90,7 @@ pub const CODES: &[(&str, &str)] = &[
     ("W0206", "duplicate agent file reference name"),
     ("W0207", "an environment other than the built-in `bw4t`"),
     ("W0208", "an agent file is never launched"),
+    ("W0209", "an agent name is launched by more than one instruction"),
     ("W0301", "duplicate named test in one agent block"),
     ("W0302", "an agent is tested in more than one block"),
 ];

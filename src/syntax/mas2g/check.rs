@@ -84,6 +84,26 @@ pub fn check_files(mas: &MasFile, base_dir: &Path) -> Vec<Diagnostic> {
             );
         }
     }
+    // `name` (one agent) and `name[N]` (name1..nameN) do not clash with each other.
+    let mut given: BTreeMap<(String, bool), ()> = BTreeMap::new();
+    for inst in mas.launch_rules.iter().flat_map(|r| &r.instructions) {
+        let (name, span) = match &inst.name {
+            Some(AgentName::Entity(_)) => continue,
+            Some(AgentName::Given(g)) => (g.value.clone(), g.span.clone()),
+            None => (inst.reference.value.clone(), inst.reference.span.clone()),
+        };
+        if given.insert((name.clone(), inst.count() > 1), ()).is_some() {
+            diags.push(
+                Diagnostic::warning(
+                    "W0209",
+                    format!("agent name `{name}` is launched by more than one instruction"),
+                    file,
+                    span,
+                )
+                .with_hint("agent names must be unique; the runtime renames the later agents"),
+            );
+        }
+    }
     let mut launched = vec![false; mas.agent_files.len()];
     for rule in &mas.launch_rules {
         for inst in &rule.instructions {
