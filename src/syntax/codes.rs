@@ -67,6 +67,7 @@ pub const CODES: &[(&str, &str)] = &[
     ("E0308", "the MAS file of a test has errors"),
     ("E0309", "a test calls an action or module the tested agent does not have"),
     ("E0310", "a test uses a macro the tested agent does not define"),
+    ("E0311", "a variable in an action that a test runs (never bound)"),
     ("W0001", "duplicate section: only the first one is used"),
     ("W0002", "legacy send form (`bob.send(p)` or `send(bob, p)`)"),
     ("W0003", "unknown module option (ignored)"),

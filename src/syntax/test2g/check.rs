@@ -10,7 +10,7 @@ use std::path::Path;
 /// Checks `test`, whose MAS path is relative to `base_dir` (the test file's directory).
 pub fn check_files(test: &MasTest, base_dir: &Path) -> Vec<Diagnostic> {
     let file = test.file.as_str();
-    let mut diags = Vec::new();
+    let mut diags = super::calls::check_ground(test);
     let mut seen_agents: BTreeSet<&str> = BTreeSet::new();
     for a in &test.agents {
         for name in &a.agents {
