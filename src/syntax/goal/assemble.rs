@@ -146,7 +146,7 @@ impl Builder<'_> {
         sections: Vec<SectionItem>,
         span: Span,
     ) -> Module {
-        let options = self.options(&kind, written);
+        let options = self.options(written);
         let mut m = Module {
             kind,
             options,
@@ -213,7 +213,7 @@ impl Builder<'_> {
     }
 
     /// Reads `[exit=..., focus=...]`: unknown keys and duplicates are warnings, unknown values errors.
-    fn options(&mut self, kind: &ModuleKind, written: Vec<ModuleOption>) -> ModuleOptions {
+    fn options(&mut self, written: Vec<ModuleOption>) -> ModuleOptions {
         let mut o = ModuleOptions::default();
         for opt in &written {
             let (key, value) = (opt.key.name.name(), opt.value.name.name());
@@ -268,7 +268,6 @@ impl Builder<'_> {
                 }
             }
         }
-        let _ = kind;
         o.written = written;
         o
     }

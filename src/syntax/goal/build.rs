@@ -12,7 +12,8 @@ use lalrpop_util::ErrorRecovery;
 use std::cell::Cell;
 use std::rc::Rc;
 
-/// A top-level item of a `.goal` file.
+/// A top-level item of a `.goal` file (short-lived: moved into the program at once).
+#[allow(clippy::large_enum_variant)]
 pub enum TopItem {
     Module(Module),
     Import(Import),
