@@ -437,6 +437,14 @@ impl World {
         (0..self.robots.len()).find(|&r| Some(r) != except && rect.contains(&self.robots[r].pos))
     }
 
+    /// The shortest route (zone names, both ends included) between two zones by name.
+    pub fn route(&self, from: &str, to: &str) -> Option<Vec<String>> {
+        let path = self
+            .nav
+            .path(self.zone_index(from)?, self.zone_index(to)?)?;
+        Some(path.iter().map(|&z| self.zones[z].name.clone()).collect())
+    }
+
     /// True when the whole sequence has been delivered.
     pub fn sequence_done(&self) -> bool {
         self.sequence_index >= self.sequence.len()
