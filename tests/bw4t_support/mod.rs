@@ -108,3 +108,64 @@ pub fn named(batch: &[Term], name: &str) -> Vec<String> {
         .map(|t| t.to_string())
         .collect()
 }
+
+/// A typed percept base as the agent runtime keeps it: once-percepts stay, on-change percepts
+/// replace the predicate's previous instances, `not(p)` deletes `p`, always-percepts are replaced
+/// by each batch.
+#[derive(Default)]
+pub struct Base {
+    pub facts: Vec<Term>,
+}
+
+impl Base {
+    pub fn apply(&mut self, batch: &[Term]) {
+        use goal::env::PerceptType;
+        let decls = goal::bw4t::percepts::declarations();
+        let kind = |t: &Term| {
+            let (n, a) = t.functor()?;
+            decls
+                .iter()
+                .find(|d| d.name == n.name() && d.arity == a)
+                .map(|d| d.kind)
+        };
+        let same = |a: &Term, b: &Term| a.functor() == b.functor();
+        self.facts.retain(|f| kind(f) != Some(PerceptType::Always));
+        let mut replaced: Vec<Term> = Vec::new();
+        for t in batch {
+            if t.functor()
+                .is_some_and(|(n, a)| n.name() == "not" && a == 1)
+            {
+                let p = &t.args()[0];
+                self.facts.retain(|f| f != p);
+                continue;
+            }
+            if kind(t) == Some(PerceptType::OnChange) && !replaced.iter().any(|r| same(r, t)) {
+                self.facts.retain(|f| !same(f, t));
+                replaced.push(t.clone());
+            }
+            if !self.facts.contains(t) {
+                self.facts.push(t.clone());
+            }
+        }
+    }
+
+    pub fn has(&self, text: &str) -> bool {
+        has(&self.facts, text)
+    }
+
+    pub fn named(&self, name: &str) -> Vec<String> {
+        named(&self.facts, name)
+    }
+}
+
+/// Travels to `room`, walks to a free block of `colour` there and picks it up; returns its id.
+pub fn fetch(bw: &mut Bw4t, bot: &str, room: &str, colour: &str) -> i64 {
+    travel(bw, bot, room);
+    let id = *blocks_in(bw, room, colour)
+        .first()
+        .unwrap_or_else(|| panic!("no {colour} block in {room}"));
+    ok(bw, bot, go_to_block(id));
+    run_until_stopped(bw, bot, 1000);
+    ok(bw, bot, pick_up(id));
+    id
+}
