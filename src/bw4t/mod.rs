@@ -48,6 +48,7 @@
 pub mod actions;
 pub mod color;
 pub mod geometry;
+pub mod greedy;
 pub mod map;
 pub mod messages;
 pub mod motion;

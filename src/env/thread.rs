@@ -246,6 +246,22 @@ fn run_real_time(mut env: Box<dyn Environment>, rx: Receiver<Request>, tps: f64)
     let mut next = Instant::now() + period;
     let mut queue: Vec<(String, Term, Sender<Result<ActionResult, EnvError>>)> = Vec::new();
     loop {
+        // Tick first when due, so that a steady stream of requests cannot starve the clock.
+        if Instant::now() >= next {
+            for (e, a, tx) in queue.drain(..) {
+                let _ = tx.send(Ok(env.perform(&e, &a)));
+            }
+            env.tick();
+            next += period;
+            let now = Instant::now();
+            if next < now {
+                // Fell behind (slow machine): do not try to catch up with a burst of ticks.
+                next = now + period;
+            }
+            if period > Duration::ZERO {
+                continue;
+            }
+        }
         match rx.recv_deadline(next) {
             Ok(Request::Info(tx)) => drop(tx.send(info(env.as_ref()))),
             Ok(Request::Round(_, tx)) => {
@@ -257,18 +273,7 @@ fn run_real_time(mut env: Box<dyn Environment>, rx: Receiver<Request>, tps: f64)
             Ok(Request::Act(e, a, tx)) => queue.push((e, a, tx)),
             Ok(Request::Status(tx)) => drop(tx.send(status(env.as_ref()))),
             Ok(Request::Stop) | Err(RecvTimeoutError::Disconnected) => break,
-            Err(RecvTimeoutError::Timeout) => {
-                for (e, a, tx) in queue.drain(..) {
-                    let _ = tx.send(Ok(env.perform(&e, &a)));
-                }
-                env.tick();
-                next += period;
-                let now = Instant::now();
-                if next < now {
-                    // Fell behind (slow machine): do not try to catch up with a burst of ticks.
-                    next = now + period;
-                }
-            }
+            Err(RecvTimeoutError::Timeout) => {}
         }
     }
 }
