@@ -3,7 +3,8 @@
 use super::color::Color;
 use super::world::{BlockState, World};
 use crate::env::{PerceptDecl, PerceptType};
-use crate::term::Term;
+use crate::term::{Sym, Term};
+use std::sync::OnceLock;
 
 /// The percept declarations of robot entities, in batch order.
 pub fn declarations() -> Vec<PerceptDecl> {
@@ -37,12 +38,83 @@ pub fn declarations() -> Vec<PerceptDecl> {
     ]
 }
 
-fn c(name: &str, args: Vec<Term>) -> Term {
+/// Percept names and constant atoms, interned once (interning takes a lock).
+struct Syms {
+    place: Sym,
+    zone: Sym,
+    robot: Sym,
+    own_name: Sym,
+    sequence: Sym,
+    colorblind: Sym,
+    sequence_index: Sym,
+    at: Sym,
+    location: Sym,
+    state: Sym,
+    holdingblocks: Sym,
+    gripper_capacity: Sym,
+    speed: Sym,
+    battery: Sym,
+    robot_size: Sym,
+    old_target_unreachable: Sym,
+    position: Sym,
+    in_: Sym,
+    at_block: Sym,
+    occupied: Sym,
+    holding: Sym,
+    player: Sym,
+    color: Sym,
+    message: Sym,
+    true_: Sym,
+    false_: Sym,
+    traveling: Sym,
+    arrived: Sym,
+    collided: Sym,
+    colours: Vec<Sym>,
+}
+
+fn syms() -> &'static Syms {
+    static SYMS: OnceLock<Syms> = OnceLock::new();
+    SYMS.get_or_init(|| Syms {
+        place: Sym::intern("place"),
+        zone: Sym::intern("zone"),
+        robot: Sym::intern("robot"),
+        own_name: Sym::intern("ownName"),
+        sequence: Sym::intern("sequence"),
+        colorblind: Sym::intern("colorblind"),
+        sequence_index: Sym::intern("sequenceIndex"),
+        at: Sym::intern("at"),
+        location: Sym::intern("location"),
+        state: Sym::intern("state"),
+        holdingblocks: Sym::intern("holdingblocks"),
+        gripper_capacity: Sym::intern("gripperCapacity"),
+        speed: Sym::intern("speed"),
+        battery: Sym::intern("battery"),
+        robot_size: Sym::intern("robotSize"),
+        old_target_unreachable: Sym::intern("oldTargetUnreachable"),
+        position: Sym::intern("position"),
+        in_: Sym::intern("in"),
+        at_block: Sym::intern("atBlock"),
+        occupied: Sym::intern("occupied"),
+        holding: Sym::intern("holding"),
+        player: Sym::intern("player"),
+        color: Sym::intern("color"),
+        message: Sym::intern("message"),
+        true_: Sym::intern("true"),
+        false_: Sym::intern("false"),
+        traveling: Sym::intern("traveling"),
+        arrived: Sym::intern("arrived"),
+        collided: Sym::intern("collided"),
+        colours: Color::ALL.iter().map(|c| Sym::intern(c.name())).collect(),
+    })
+}
+
+fn c(name: Sym, args: Vec<Term>) -> Term {
     Term::compound(name, args)
 }
 
 fn colour_atom(col: Color) -> Term {
-    Term::atom(col.name())
+    let i = Color::ALL.iter().position(|c| *c == col).unwrap_or(0);
+    Term::Atom(syms().colours[i])
 }
 
 impl World {
@@ -54,6 +126,7 @@ impl World {
         first: bool,
         positions: bool,
     ) -> Vec<Vec<Term>> {
+        let y = syms();
         let robot = &self.robots[r];
         let here = self.zone_at(&robot.pos);
         let mut g: Vec<Vec<Term>> = Vec::with_capacity(24);
@@ -61,7 +134,7 @@ impl World {
             g.push(
                 self.zones
                     .iter()
-                    .map(|z| c("place", vec![Term::Atom(z.sym)]))
+                    .map(|z| c(y.place, vec![Term::Atom(z.sym)]))
                     .collect(),
             );
             g.push(
@@ -71,7 +144,7 @@ impl World {
                         let ctr = z.centre();
                         let nbrs = z.neighbours.iter().map(|&n| Term::Atom(self.zones[n].sym));
                         c(
-                            "zone",
+                            y.zone,
                             vec![
                                 Term::Int(z.id),
                                 Term::Atom(z.sym),
@@ -83,46 +156,53 @@ impl World {
                     })
                     .collect(),
             );
-            g.push(vec![c("robot", vec![Term::Int(robot.id)])]);
-            g.push(vec![c("ownName", vec![Term::Atom(robot.sym)])]);
+            g.push(vec![c(y.robot, vec![Term::Int(robot.id)])]);
+            g.push(vec![c(y.own_name, vec![Term::Atom(robot.sym)])]);
             let seq: Vec<Term> = self.sequence.iter().map(|&col| colour_atom(col)).collect();
-            g.push(vec![c("sequence", vec![Term::list(seq)])]);
+            g.push(vec![c(y.sequence, vec![Term::list(seq)])]);
             let cb = if robot.config.colorblind {
-                "true"
+                y.true_
             } else {
-                "false"
+                y.false_
             };
-            g.push(vec![c("colorblind", vec![Term::atom(cb)])]);
+            g.push(vec![c(y.colorblind, vec![Term::Atom(cb)])]);
         } else {
             g.resize(6, Vec::new());
         }
         g.push(vec![c(
-            "sequenceIndex",
+            y.sequence_index,
             vec![Term::Int(self.sequence_index as i64)],
         )]);
         let at = self
             .nearest_zone(&robot.pos)
-            .map(|z| c("at", vec![Term::Atom(self.zones[z].sym)]));
+            .map(|z| c(y.at, vec![Term::Atom(self.zones[z].sym)]));
         g.push(at.into_iter().collect());
         g.push(vec![c(
-            "location",
+            y.location,
             vec![Term::from(robot.pos.x), Term::from(robot.pos.y)],
         )]);
-        g.push(vec![c("state", vec![Term::atom(robot.state().name())])]);
+        g.push(vec![c(
+            y.state,
+            vec![Term::Atom(match robot.state() {
+                super::world::RobotState::Traveling => y.traveling,
+                super::world::RobotState::Arrived => y.arrived,
+                super::world::RobotState::Collided => y.collided,
+            })],
+        )]);
         let stack: Vec<Term> = robot
             .holding
             .iter()
             .rev()
             .map(|&b| Term::Int(self.blocks[b].id))
             .collect();
-        g.push(vec![c("holdingblocks", vec![Term::list(stack)])]);
+        g.push(vec![c(y.holdingblocks, vec![Term::list(stack)])]);
         g.push(vec![c(
-            "gripperCapacity",
+            y.gripper_capacity,
             vec![Term::Int(robot.config.gripper_capacity as i64)],
         )]);
-        g.push(vec![c("speed", vec![Term::from(robot.config.speed)])]);
+        g.push(vec![c(y.speed, vec![Term::from(robot.config.speed)])]);
         g.push(vec![c(
-            "battery",
+            y.battery,
             vec![Term::from(robot.battery_percent())],
         )]);
         g.push(
@@ -131,21 +211,21 @@ impl World {
                 .map(|o| {
                     let s = o.config.size.round() as i64;
                     c(
-                        "robotSize",
+                        y.robot_size,
                         vec![Term::Int(o.id), Term::Int(s), Term::Int(s)],
                     )
                 })
                 .collect(),
         );
         g.push(vec![c(
-            "oldTargetUnreachable",
+            y.old_target_unreachable,
             vec![Term::Int(robot.id), Term::Int(0)],
         )]);
         let mut pos_terms = Vec::new();
         if positions {
             let pos = |id: i64, p: &super::geometry::Pos| {
                 c(
-                    "position",
+                    y.position,
                     vec![Term::Int(id), Term::from(p.x), Term::from(p.y)],
                 )
             };
@@ -165,7 +245,7 @@ impl World {
         g.push(pos_terms);
         let inside = self
             .room_at(&robot.pos)
-            .map(|z| c("in", vec![Term::Atom(self.zones[z].sym)]));
+            .map(|z| c(y.in_, vec![Term::Atom(self.zones[z].sym)]));
         g.push(inside.into_iter().collect());
         let mut at_block = Vec::new();
         let mut colours = Vec::new();
@@ -173,21 +253,21 @@ impl World {
             for b in self.free_blocks_in(z) {
                 let block = &self.blocks[b];
                 if self.can_pick_up(r, b) {
-                    at_block.push(c("atBlock", vec![Term::Int(block.id)]));
+                    at_block.push(c(y.at_block, vec![Term::Int(block.id)]));
                 }
                 let col = if robot.config.colorblind {
                     Color::DarkGray
                 } else {
                     block.color
                 };
-                colours.push(c("color", vec![Term::Int(block.id), colour_atom(col)]));
+                colours.push(c(y.color, vec![Term::Int(block.id), colour_atom(col)]));
             }
         }
         g.push(at_block);
         g.push(
             (0..self.zones.len())
                 .filter(|&z| self.zones[z].is_room() && self.occupier(z, None).is_some())
-                .map(|z| c("occupied", vec![Term::Atom(self.zones[z].sym)]))
+                .map(|z| c(y.occupied, vec![Term::Atom(self.zones[z].sym)]))
                 .collect(),
         );
         g.push(
@@ -195,7 +275,7 @@ impl World {
                 .holding
                 .iter()
                 .filter(|&&b| self.blocks[b].state == BlockState::Held(r))
-                .map(|&b| c("holding", vec![Term::Int(self.blocks[b].id)]))
+                .map(|&b| c(y.holding, vec![Term::Int(self.blocks[b].id)]))
                 .collect(),
         );
         g.push(
@@ -203,7 +283,7 @@ impl World {
                 .iter()
                 .enumerate()
                 .filter(|(i, _)| *i != r)
-                .map(|(_, o)| c("player", vec![Term::Atom(o.sym)]))
+                .map(|(_, o)| c(y.player, vec![Term::Atom(o.sym)]))
                 .collect(),
         );
         g.push(colours);
@@ -211,7 +291,7 @@ impl World {
         g.push(
             inbox
                 .into_iter()
-                .map(|(from, content)| c("message", vec![Term::Atom(from), content]))
+                .map(|(from, content)| c(y.message, vec![Term::Atom(from), content]))
                 .collect(),
         );
         g
