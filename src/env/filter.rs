@@ -69,12 +69,16 @@ impl PerceptFilter {
                 }
                 PerceptType::Always => out.extend(now),
                 PerceptType::OnChange => {
-                    if first || !same_set(prev, &now) {
+                    // Instances come in a stable order, so plain equality is the fast path.
+                    if first || (*prev != now && !same_set(prev, &now)) {
                         out.extend(now.iter().cloned());
                         *prev = now;
                     }
                 }
                 PerceptType::OnChangeWithNegation => {
+                    if *prev == now {
+                        continue;
+                    }
                     for p in prev.iter() {
                         if !now.contains(p) {
                             out.push(Term::compound(well_known::NOT, vec![p.clone()]));
