@@ -39,7 +39,7 @@ fn init_parameters_configure_a_run_and_bad_ones_are_diagnostics() {
     params.insert("robots".into(), Term::Int(2));
     params.insert("gripperCapacity".into(), Term::Int(2));
     params.insert("colorblind".into(), Term::list(vec![Term::atom("Bot2")]));
-    let mut bw = Bw4t::from_params(&params).unwrap();
+    let mut bw = <Bw4t as goal::env::FromInitParams>::from_init_params(&params).unwrap();
     assert_eq!(bw.entities().len(), 2);
     assert!(has(&bw.percepts("Bot2"), "colorblind(true)"));
     assert!(has(&bw.percepts("Bot1"), "gripperCapacity(2)"));

@@ -203,6 +203,14 @@ fn messages_are_delivered_once_to_their_receivers() {
     bw.tick();
     assert!(named(&bw.percepts("Bot2"), "message").is_empty());
     assert_eq!(bw.run_stats().robots[0].messages_sent, 2);
+    // GOAL's `allother` is accepted for `all`.
+    ok(&mut bw, "Bot3", send("allother", Term::atom("yes")));
+    bw.tick();
+    assert_eq!(
+        named(&bw.percepts("Bot4"), "message"),
+        ["message('Bot3',yes)"]
+    );
+    assert!(named(&bw.percepts("Bot3"), "message").is_empty());
 }
 
 fn scripted_run(seed: u64) -> Vec<String> {

@@ -231,7 +231,7 @@ impl World {
 
     fn send_message(&mut self, r: usize, to: &str, content: &Term) -> ActionResult {
         let sender: Sym = self.robots[r].sym;
-        let receivers: Vec<usize> = if to == "all" {
+        let receivers: Vec<usize> = if to == "all" || to == "allother" {
             (0..self.robots.len()).filter(|&o| o != r).collect()
         } else {
             match self.robot_index(to) {

@@ -7,6 +7,9 @@
 //! ([`map::builtin`]) or imported from BW4T XML ([`xml::import`]). Behaviour follows the seed
 //! (the BW4T3 agent-environment interface) and `spec/bw4t.md`.
 //!
+//! Also here: [`greedy`], a scripted percept-driven player used as a smoke test and benchmark,
+//! and [`messages`], the seed's message vocabulary with speech acts and English sentences.
+//!
 //! Time is ticks. Within a tick, robots move in entity order: 0.25 units per tick at the
 //! default speed, one idle tick at every waypoint, arrival tolerance 0.001. Actions take effect
 //! between ticks (the caller decides when: see [`crate::env::thread`]).
@@ -42,6 +45,7 @@
 //!   blocks get ids in map file order (Java: `HashMap` order).
 //! * The end of the game is reported ([`crate::env::Environment::is_finished`], statistics);
 //!   the simulation keeps running afterwards as in Java.
+//! * `sendMessage` also accepts `allother` (GOAL's name) for `all`.
 //! * Maps with dangling neighbour names, blocks outside rooms, overlapping spawn points or doors
 //!   off their room are rejected with diagnostics (Java: ignores or crashes).
 
@@ -64,7 +68,7 @@ pub use stats::{RobotStats, RunStats};
 pub use world::{RobotConfig, RobotState, World};
 
 use crate::diag::Diagnostic;
-use crate::env::{ActionResult, EntityInfo, Environment, InitParams, PerceptDecl};
+use crate::env::{ActionResult, EntityInfo, Environment, FromInitParams, InitParams, PerceptDecl};
 use crate::term::Term;
 
 /// How to set up a run besides the map.
@@ -293,5 +297,15 @@ impl Environment for Bw4t {
 
     fn stats(&self) -> serde_json::Value {
         serde_json::to_value(self.run_stats()).unwrap_or(serde_json::Value::Null)
+    }
+}
+
+impl FromInitParams for Bw4t {
+    fn init_param_names() -> &'static [&'static str] {
+        INIT_PARAMS
+    }
+
+    fn from_init_params(params: &InitParams) -> Result<Self, Vec<Diagnostic>> {
+        Bw4t::from_params(params)
     }
 }

@@ -10,6 +10,7 @@
 pub mod filter;
 pub mod thread;
 
+use crate::diag::Diagnostic;
 use crate::term::Term;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -99,4 +100,12 @@ pub trait Environment: Send {
     fn is_finished(&self) -> bool;
     /// Run statistics as JSON.
     fn stats(&self) -> serde_json::Value;
+}
+
+/// Environments that can be set up from init parameters (e.g. those of a `.mas2g` file).
+pub trait FromInitParams: Sized {
+    /// The parameter keys this environment understands.
+    fn init_param_names() -> &'static [&'static str];
+    /// Creates the environment; bad or unknown parameters are diagnostics.
+    fn from_init_params(params: &InitParams) -> Result<Self, Vec<Diagnostic>>;
 }
