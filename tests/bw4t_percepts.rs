@@ -206,10 +206,15 @@ fn messages_are_delivered_once_to_their_receivers() {
     // GOAL's `allother` is accepted for `all`.
     ok(&mut bw, "Bot3", send("allother", Term::atom("yes")));
     bw.tick();
+    // Bot4 had not perceived since the first broadcast: it gets both now, once.
     assert_eq!(
         named(&bw.percepts("Bot4"), "message"),
-        ["message('Bot3',yes)"]
+        [
+            "message('Bot1',imp(in('Bot1','RoomA')))",
+            "message('Bot3',yes)"
+        ]
     );
+    assert!(named(&bw.percepts("Bot4"), "message").is_empty());
     assert!(named(&bw.percepts("Bot3"), "message").is_empty());
 }
 
