@@ -191,6 +191,7 @@ pub struct World {
     pub(crate) next_id: i64,
     pub(crate) rng: ChaCha8Rng,
     pub(crate) nav: Nav,
+    pub(crate) percept_cache: Vec<super::percepts::FixedPercepts>,
 }
 
 impl World {
@@ -300,6 +301,7 @@ impl World {
             next_id,
             rng,
             nav: Nav::default(),
+            percept_cache: Vec::new(),
         };
         world.nav = Nav::new(&world.zones);
         for &r in &rooms {
@@ -346,6 +348,7 @@ impl World {
             room,
         });
         self.next_id += 1;
+        self.rebuild_percept_cache();
         Ok(idx)
     }
 
