@@ -115,6 +115,13 @@ impl World {
     }
 
     fn go_to_point(&mut self, r: usize, p: Pos) -> ActionResult {
+        let b = &self.bounds;
+        if !(b.min.x <= p.x && p.x <= b.max.x && b.min.y <= p.y && p.y <= b.max.y) {
+            return ActionResult::fail(format!(
+                "point ({}, {}) is outside the map ({}..{} x {}..{})",
+                p.x, p.y, b.min.x, b.max.x, b.min.y, b.max.y
+            ));
+        }
         let plan = self.plan_to_point(r, p);
         self.start_plan(r, plan)
     }
@@ -188,7 +195,11 @@ impl World {
         };
         let pos = self.robots[r].pos;
         let dz = self.drop_zone;
-        if self.zones[dz].rect.contains(&pos) {
+        if self
+            .zones
+            .get(dz)
+            .is_some_and(|z| z.is_drop_zone && z.rect.contains(&pos))
+        {
             self.blocks[b].state = BlockState::Gone;
             if self.sequence_done() {
                 self.stats.dropped_after_completion += 1;

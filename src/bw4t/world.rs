@@ -184,6 +184,8 @@ pub struct World {
     pub sequence: Vec<Color>,
     pub sequence_index: usize,
     pub one_bot_per_corridor_zone: bool,
+    /// The map area together with every zone: movement targets must lie inside.
+    pub bounds: Rect,
     pub tick: u64,
     pub stats: RunStats,
     /// Spawn points not used yet.
@@ -250,6 +252,14 @@ impl World {
             })
             .collect();
         let drop_zone = zones.iter().position(|z| z.is_drop_zone).unwrap_or(0);
+        let mut bounds = Rect {
+            min: Pos::new(0.0, 0.0),
+            max: Pos::new(map.width.max(0.0), map.height.max(0.0)),
+        };
+        for z in &zones {
+            bounds.min = bounds.min.inf(&z.rect.min);
+            bounds.max = bounds.max.sup(&z.rect.max);
+        }
         let mut sequence: Vec<Color> = map
             .sequence
             .iter()
@@ -295,6 +305,7 @@ impl World {
             sequence,
             sequence_index: 0,
             one_bot_per_corridor_zone: map.one_bot_per_corridor_zone,
+            bounds,
             tick: 0,
             stats: RunStats::default(),
             spawns: map.spawns.iter().map(|s| Pos::new(s[0], s[1])).collect(),
