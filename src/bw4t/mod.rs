@@ -45,6 +45,7 @@
 //!   blocks get ids in map file order (Java: `HashMap` order).
 //! * The end of the game is reported ([`crate::env::Environment::is_finished`], statistics);
 //!   the simulation keeps running afterwards as in Java.
+//! * `goTo(X, Y)` to a point outside the map area and its zones fails (Java: accepted).
 //! * `sendMessage` also accepts `allother` (GOAL's name) for `all`.
 //! * Maps with dangling neighbour names, blocks outside rooms, overlapping spawn points or doors
 //!   off their room are rejected with diagnostics (Java: ignores or crashes).
