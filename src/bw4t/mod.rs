@@ -17,7 +17,7 @@
 //! ## Not there yet
 //! * robot collisions, the `bumped` percept and `navigateObstacles` (the action fails with a
 //!   message saying so; robots pass through each other in corridors, as in BW4T with
-//!   collisions off, its default);
+//!   collisions off, its default); `oldTargetUnreachable(Id, 0)` is therefore constant;
 //! * human-controlled robots and their GUI percepts; e-partners and their actions/percepts;
 //! * the size-overload/speed handicaps are plain settings ([`RobotConfig`]) rather than BW4T
 //!   bot-configuration files.
@@ -45,6 +45,10 @@
 //!   blocks get ids in map file order (Java: `HashMap` order).
 //! * The end of the game is reported ([`crate::env::Environment::is_finished`], statistics);
 //!   the simulation keeps running afterwards as in Java.
+//! * `zone/5` lists neighbours undirected (declared in either direction), in map file order
+//!   (Java: the declared ones, in hash-set order).
+//! * Actions are applied between ticks, never during one (Java: at any time on RMI threads).
+//! * As in Java, a robot with an empty battery does not move and its plan runs out (`arrived`).
 //! * `goTo(X, Y)` to a point outside the map area and its zones fails (Java: accepted).
 //! * `sendMessage` also accepts `allother` (GOAL's name) for `all`.
 //! * Maps with dangling neighbour names, blocks outside rooms, overlapping spawn points or doors
