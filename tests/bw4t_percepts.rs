@@ -57,7 +57,8 @@ fn every_declared_percept_appears_with_its_shape() {
     assert!(has(&after, &format!("holding({id})")));
     assert!(has(&after, &format!("not(atBlock({id}))")));
     let both: Vec<Term> = batch.iter().chain(after.iter()).cloned().collect();
-    for d in &decls {
+    // `bumped` needs collisions: see bw4t_collisions.rs.
+    for d in decls.iter().filter(|d| d.name != "bumped") {
         let found = both.iter().any(|t| {
             t.functor()
                 .is_some_and(|(n, a)| n.name() == d.name && a == d.arity)

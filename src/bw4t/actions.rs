@@ -82,9 +82,7 @@ impl World {
                     args[0]
                 )),
             },
-            ("navigateObstacles", 0) => ActionResult::fail(
-                "navigateObstacles is not available: this BW4T has no robot collisions yet",
-            ),
+            ("navigateObstacles", 0) => self.navigate_obstacles(r),
             (n, a) => ActionResult::fail(format!(
                 "unknown action {n}/{a}; robots understand {}",
                 ACTIONS.join(", ")
@@ -96,6 +94,9 @@ impl World {
         let robot = &mut self.robots[r];
         robot.collided = false;
         robot.collision = None;
+        robot.obstacles.clear();
+        robot.interrupted.clear();
+        robot.target_unreachable = false;
         robot.plan.clear();
         match plan {
             Ok(p) => {

@@ -14,10 +14,12 @@
 //! default speed, one idle tick at every waypoint, arrival tolerance 0.001. Actions take effect
 //! between ticks (the caller decides when: see [`crate::env::thread`]).
 //!
+//! Robot collisions are optional (init parameter `collisions`, off by default as in BW4T):
+//! a robot whose next step would bring its box (grown by 1) onto another robot's box stops,
+//! `collided`, with `bumped(Name)`; `navigateObstacles` then plans a detour on the unit grid
+//! ([`obstacles`]) or fails and sets `oldTargetUnreachable(Id, 1)`.
+//!
 //! ## Not there yet
-//! * robot collisions, the `bumped` percept and `navigateObstacles` (the action fails with a
-//!   message saying so; robots pass through each other in corridors, as in BW4T with
-//!   collisions off, its default); `oldTargetUnreachable(Id, 0)` is therefore constant;
 //! * human-controlled robots and their GUI percepts; e-partners and their actions/percepts;
 //! * the size-overload/speed handicaps are plain settings ([`RobotConfig`]) rather than BW4T
 //!   bot-configuration files.
@@ -49,6 +51,10 @@
 //!   (Java: the declared ones, in hash-set order).
 //! * Actions are applied between ticks, never during one (Java: at any time on RMI threads).
 //! * As in Java, a robot with an empty battery does not move and its plan runs out (`arrived`).
+//! * Collisions: only the moving robot stops (Java also freezes the robot it bumped into); a
+//!   step that moves away from a robot is never blocked (Java has a start-up allowance tied to
+//!   integer coordinates instead); the detour grid includes charging zones and free space and is searched
+//!   breadth-first with the zone entry rules (Java's grid has an inverted room margin).
 //! * `goTo(X, Y)` to a point outside the map area and its zones fails (Java: accepted).
 //! * `sendMessage` also accepts `allother` (GOAL's name) for `all`.
 //! * Maps with dangling neighbour names, blocks outside rooms, overlapping spawn points or doors
@@ -62,6 +68,7 @@ pub mod map;
 pub mod messages;
 pub mod motion;
 pub mod nav;
+pub mod obstacles;
 pub mod percepts;
 pub mod stats;
 pub mod world;
@@ -91,6 +98,8 @@ pub struct Bw4tConfig {
     pub one_bot_per_corridor_zone: Option<bool>,
     /// Send `position` percepts.
     pub position_percepts: bool,
+    /// Robots block each other (`bumped`, `navigateObstacles`); off by default as in BW4T.
+    pub collisions: bool,
 }
 
 /// The init parameters [`Bw4t::from_params`] understands.
@@ -105,6 +114,7 @@ pub const INIT_PARAMS: &[&str] = &[
     "size",
     "oneBotPerCorridorZone",
     "positionPercepts",
+    "collisions",
 ];
 
 /// The BW4T environment.
@@ -119,6 +129,7 @@ impl Bw4t {
     /// A run on `map` (already checked) with `config`.
     pub fn new(map: &Map, config: &Bw4tConfig) -> Bw4t {
         let mut world = World::new(map, config.seed);
+        world.collisions = config.collisions;
         if let Some(v) = config.one_bot_per_corridor_zone {
             world.one_bot_per_corridor_zone = v;
         }
@@ -220,6 +231,10 @@ impl Bw4t {
                 },
                 "positionPercepts" => match flag {
                     Some(b) => cfg.position_percepts = b,
+                    None => return Err(bad(key, "true or false", v)),
+                },
+                "collisions" => match flag {
+                    Some(b) => cfg.collisions = b,
                     None => return Err(bad(key, "true or false", v)),
                 },
                 other => {

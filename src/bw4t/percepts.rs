@@ -33,6 +33,7 @@ pub fn declarations() -> Vec<PerceptDecl> {
         d("occupied", 1, OnChangeWithNegation),
         d("holding", 1, OnChangeWithNegation),
         d("player", 1, OnChangeWithNegation),
+        d("bumped", 1, OnChangeWithNegation),
         d("color", 2, Always),
         d("message", 2, Always),
     ]
@@ -62,6 +63,7 @@ struct Syms {
     occupied: Sym,
     holding: Sym,
     player: Sym,
+    bumped: Sym,
     color: Sym,
     message: Sym,
     true_: Sym,
@@ -97,6 +99,7 @@ fn syms() -> &'static Syms {
         occupied: Sym::intern("occupied"),
         holding: Sym::intern("holding"),
         player: Sym::intern("player"),
+        bumped: Sym::intern("bumped"),
         color: Sym::intern("color"),
         message: Sym::intern("message"),
         true_: Sym::intern("true"),
@@ -124,7 +127,6 @@ pub(crate) struct FixedPercepts {
     gripper_capacity: Term,
     speed: Term,
     robot_sizes: Vec<Term>,
-    old_target_unreachable: Term,
     players: Vec<Term>,
 }
 
@@ -153,10 +155,6 @@ impl World {
                     ),
                     speed: c(y.speed, vec![Term::from(robot.config.speed)]),
                     robot_sizes: robot_sizes.clone(),
-                    old_target_unreachable: c(
-                        y.old_target_unreachable,
-                        vec![Term::Int(robot.id), Term::Int(0)],
-                    ),
                     players: self
                         .robots
                         .iter()
@@ -255,7 +253,13 @@ impl World {
             vec![Term::from(robot.battery_percent())],
         )]);
         g.push(fixed.robot_sizes.clone());
-        g.push(vec![fixed.old_target_unreachable.clone()]);
+        g.push(vec![c(
+            y.old_target_unreachable,
+            vec![
+                Term::Int(robot.id),
+                Term::Int(robot.target_unreachable as i64),
+            ],
+        )]);
         let mut pos_terms = Vec::new();
         if positions {
             let pos = |id: i64, p: &super::geometry::Pos| {
@@ -314,6 +318,15 @@ impl World {
                 .collect(),
         );
         g.push(fixed.players.clone());
+        g.push(if robot.collided {
+            robot
+                .obstacles
+                .iter()
+                .map(|&o| c(y.bumped, vec![Term::Atom(self.robots[o].sym)]))
+                .collect()
+        } else {
+            Vec::new()
+        });
         g.push(colours);
         let inbox = std::mem::take(&mut self.robots[r].inbox);
         g.push(

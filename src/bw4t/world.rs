@@ -137,8 +137,14 @@ pub struct Robot {
     /// Remaining waypoints; the front is the current one.
     pub plan: VecDeque<Pos>,
     pub collided: bool,
-    /// Why the last step failed (hit wall, closed door, occupied zone).
+    /// Why the last step failed (hit wall, closed door, occupied zone, bumped into a robot).
     pub collision: Option<&'static str>,
+    /// Robots this robot bumped into (collisions mode), while collided.
+    pub obstacles: Vec<usize>,
+    /// The plan that was interrupted by the last collision (for `navigateObstacles`).
+    pub interrupted: Vec<Pos>,
+    /// Set when `navigateObstacles` found no way to the interrupted plan's target.
+    pub target_unreachable: bool,
     /// Current battery level (meaningful only with a battery).
     pub battery: f64,
     pub stats: RobotStats,
@@ -184,6 +190,8 @@ pub struct World {
     pub sequence: Vec<Color>,
     pub sequence_index: usize,
     pub one_bot_per_corridor_zone: bool,
+    /// Robots block each other (BW4T's optional collisions; off by default).
+    pub collisions: bool,
     /// The map area together with every zone: movement targets must lie inside.
     pub bounds: Rect,
     pub tick: u64,
@@ -305,6 +313,7 @@ impl World {
             sequence,
             sequence_index: 0,
             one_bot_per_corridor_zone: map.one_bot_per_corridor_zone,
+            collisions: false,
             bounds,
             tick: 0,
             stats: RunStats::default(),
@@ -354,6 +363,9 @@ impl World {
             plan: VecDeque::new(),
             collided: false,
             collision: None,
+            obstacles: Vec::new(),
+            interrupted: Vec::new(),
+            target_unreachable: false,
             inbox: VecDeque::new(),
             filter: PerceptFilter::new(&super::percepts::declarations()),
             room,
