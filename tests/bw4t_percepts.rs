@@ -69,11 +69,9 @@ fn every_declared_percept_appears_with_its_shape() {
     assert!(has(&batch, "message('Bot2',hello)"));
     assert!(has(&batch, "in('RoomA')"));
     assert!(has(&batch, "occupied('RoomA')"));
-    assert!(
-        named(&batch, "position").len() >= 3,
-        "{:?}",
-        named(&batch, "position")
-    );
+    // Self, 3 rooms (drop zone included), and the two blocks in RoomA.
+    let positions = named(&batch, "position");
+    assert_eq!(positions.len(), 6, "{positions:?}");
 }
 
 #[test]

@@ -41,7 +41,8 @@
 //! * Visibility for `pickUp`/`goToBlock` uses the current position (Java: the position at the
 //!   last perceive call).
 //! * `position` percepts are off by default for every robot (init parameter
-//!   `positionPercepts`), and list the robot itself, robots and free blocks in its zone.
+//!   `positionPercepts`), and list the robot itself, every room (drop zone included), and the
+//!   robots and free blocks in the robot's zone.
 //! * Robots update in entity order (Java: Repast's shuffle); shortest routes with equal length
 //!   are chosen by map file order; random content comes from one ChaCha generator per run, and
 //!   blocks get ids in map file order (Java: `HashMap` order).

@@ -269,6 +269,13 @@ impl World {
                 )
             };
             pos_terms.push(pos(robot.id, &robot.pos));
+            for z in self
+                .zones
+                .iter()
+                .filter(|z| z.kind == super::map::ZoneKind::Room)
+            {
+                pos_terms.push(pos(z.id, &z.centre()));
+            }
             if let Some(z) = here {
                 let rect = self.zones[z].rect;
                 for (i, o) in self.robots.iter().enumerate() {
