@@ -6,6 +6,8 @@
 //! [`Environment::percepts`]. Each percept predicate has a declared [`PerceptType`]; the agent
 //! runtime keeps a typed percept base from the batches (see `architecture.md`, "Typed percepts").
 //! [`filter::PerceptFilter`] turns the full current truth into such batches.
+//! [`thread::EnvHandle`] runs any environment on its own thread (lock-step or real-time), and
+//! [`FromInitParams`] creates one from init parameters (key -> term).
 
 pub mod filter;
 pub mod thread;
