@@ -41,7 +41,6 @@ enum After {
 pub struct Lexer<'s> {
     src: &'s str,
     file: String,
-    inner: logos::Lexer<'s, Tok>,
     /// Byte position where the next token is searched.
     pos: usize,
     after: After,
@@ -61,7 +60,6 @@ impl<'s> Lexer<'s> {
         Lexer {
             src,
             file: file.to_string(),
-            inner: Tok::lexer(src),
             pos: 0,
             after: After::Plain,
             depth: 0,
@@ -190,10 +188,11 @@ impl<'s> Lexer<'s> {
             }
             // A logos token starting at self.pos.
             let rest = &self.src[self.pos..];
-            self.inner = Tok::lexer(rest);
+            // A fresh logos lexer on the rest: KR spans and comments are skipped by hand above.
+            let mut inner = Tok::lexer(rest);
             let start = self.pos;
-            let tok = self.inner.next()?;
-            let span = self.inner.span();
+            let tok = inner.next()?;
+            let span = inner.span();
             let end = start + span.end;
             self.pos = end;
             match tok {
