@@ -195,3 +195,32 @@ fn send_moods_and_content_spans() {
         ]
     );
 }
+
+#[test]
+fn legacy_send_with_several_receivers() {
+    let src =
+        "main module { program { if true then send((alice, bob), hi) + send( (carol), :x). } }";
+    let (program, _) = parse_goal("m.goal", src);
+    let rules = &program.modules[0].program.as_ref().expect("program").rules;
+    let RuleBody::Combo(actions) = &rules[0].body else {
+        panic!("combo expected")
+    };
+    let receivers: Vec<Vec<String>> = actions
+        .iter()
+        .map(|a| match &a.kind {
+            ActionKind::Send {
+                selector:
+                    Selector {
+                        kind: SelectorKind::Agents(to),
+                        ..
+                    },
+                ..
+            } => to
+                .iter()
+                .map(|t| src[t.spans.span.clone()].to_string())
+                .collect(),
+            other => panic!("send expected, got {other:?}"),
+        })
+        .collect();
+    assert_eq!(receivers, vec![vec!["alice", "bob"], vec!["carol"]]);
+}

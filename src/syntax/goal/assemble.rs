@@ -94,6 +94,14 @@ impl Builder<'_> {
                             "this" => SelectorKind::This,
                             "some" => SelectorKind::Some,
                             "someother" => SelectorKind::SomeOther,
+                            // `send((a, b), p)`: several receivers.
+                            _ if receiver.starts_with('(') && receiver.ends_with(')') => {
+                                let inner = self.src[..comma].rfind(')').unwrap_or(comma);
+                                let open = content.start
+                                    + (self.src[content.clone()].len()
+                                        - self.src[content.clone()].trim_start().len());
+                                SelectorKind::Agents(self.term_list(open + 1..inner))
+                            }
                             _ => SelectorKind::Agents(vec![t]),
                         };
                         self.warning(
