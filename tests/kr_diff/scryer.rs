@@ -137,6 +137,13 @@ impl Scryer {
         self.machine.load_module_string(&name, text);
     }
 
+    /// Loads trusted program text (directives such as `:- dynamic(bel/1).`).
+    pub fn load_text(&mut self, text: &str) {
+        self.modules += 1;
+        let name = format!("goal_kb_{}", self.modules);
+        self.machine.load_module_string(&name, text.to_string());
+    }
+
     /// Runs `goal` and returns its answers as instances of `template`, collected inside scryer
     /// with `findall/3` (so bindings between query variables survive), or the error it raised.
     pub fn query(&mut self, template: &Term, goal: &Term) -> Outcome {
