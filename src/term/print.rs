@@ -73,6 +73,18 @@ pub fn atom_needs_no_quotes(name: &str) -> bool {
     }
 }
 
+/// True when `name` written right before `(` reads back as that functor without quotes.
+fn functor_needs_no_quotes(name: &str) -> bool {
+    let mut chars = name.chars();
+    match chars.next() {
+        Some(c) if c.is_ascii_lowercase() => chars.all(|c| c.is_ascii_alphanumeric() || c == '_'),
+        Some(_) => {
+            matches!(name, "!" | ";") || (name.chars().all(is_symbol_char) && !name.contains("/*"))
+        }
+        None => false,
+    }
+}
+
 /// Writes `name` as a quoted atom body with escapes.
 pub fn quote_atom(name: &str) -> String {
     let mut s = String::with_capacity(name.len() + 2);
@@ -185,7 +197,7 @@ impl Writer {
                     if paren {
                         self.token("(");
                     }
-                    self.term(&args[0], lp);
+                    self.operand(&args[0], lp);
                     if text == "," {
                         self.out.push(',');
                     } else if text.chars().all(is_alnum) {
@@ -223,7 +235,11 @@ impl Writer {
                 }
             }
         }
-        let functor = self.atom_text(name);
+        let functor = if self.style.quoted && !functor_needs_no_quotes(name.name()) {
+            quote_atom(name.name())
+        } else {
+            name.name().to_string()
+        };
         self.token(&functor);
         self.out.push('(');
         for (i, a) in args.iter().enumerate() {
@@ -239,12 +255,25 @@ impl Writer {
     /// operator would turn the operator into a functor, so a space separates them.
     fn operand_after_operator(&mut self, arg: &Term, priority: u16) {
         let start = self.out.len();
-        self.term(arg, priority);
+        self.operand(arg, priority);
         if self.out[start..].starts_with('(') && start > 0 {
             let prev = self.out[..start].chars().last().unwrap_or(' ');
             if prev != ' ' && prev != ',' && prev != '(' {
                 self.out.insert(start, ' ');
             }
+        }
+    }
+
+    /// Writes an operand of an operator; an operator atom there is bracketed, so `(-)-a` does
+    /// not read back as `-(-(a))`.
+    fn operand(&mut self, arg: &Term, priority: u16) {
+        match arg {
+            Term::Atom(a) if ops::is_operator(a.name()) => {
+                self.token("(");
+                self.term(arg, 1200);
+                self.token(")");
+            }
+            _ => self.term(arg, priority),
         }
     }
 
@@ -348,6 +377,8 @@ mod tests {
             c("{}", vec![c(",", vec![a("a"), a("b")])]).to_string(),
             "{a,b}"
         );
-        assert_eq!(c("mod", vec![a("a")]).to_string(), "'mod'(a)");
+        assert_eq!(c("mod", vec![a("a")]).to_string(), "mod(a)");
+        assert_eq!(c("[]", vec![a("a")]).to_string(), "'[]'(a)");
+        assert_eq!(c(",", vec![a("a")]).to_string(), "','(a)");
     }
 }

@@ -6,7 +6,10 @@ use std::hash::{Hash, Hasher};
 use std::sync::Arc;
 
 /// A Prolog term. Cheap to clone: compound terms share their arguments.
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+///
+/// Equality, hashing, ordering and dropping walk the last argument in a loop rather than by
+/// recursion, so long lists (and other right-nested terms) never overflow the stack.
+#[derive(Clone, Debug)]
 pub enum Term {
     /// An atom such as `foo`, `[]` or `'RoomA1'`.
     Atom(Sym),
@@ -23,13 +26,97 @@ pub enum Term {
 }
 
 /// The functor and arguments of a compound term.
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Debug)]
 pub struct Compound {
     /// The functor name.
     pub name: Sym,
     /// The arguments; never empty.
     pub args: Box<[Term]>,
 }
+
+impl Drop for Compound {
+    fn drop(&mut self) {
+        let unique = |t: &Term| matches!(t, Term::Compound(c) if Arc::strong_count(c) == 1);
+        if !self.args.iter().any(unique) {
+            return;
+        }
+        // Move uniquely owned sub-terms onto a heap stack so dropping a long list does not recurse.
+        let mut stack: Vec<Term> = std::mem::take(&mut self.args).into_vec();
+        while let Some(t) = stack.pop() {
+            if let Term::Compound(arc) = t {
+                if let Ok(mut c) = Arc::try_unwrap(arc) {
+                    stack.extend(std::mem::take(&mut c.args).into_vec());
+                }
+            }
+        }
+    }
+}
+
+impl PartialEq for Term {
+    fn eq(&self, other: &Term) -> bool {
+        let (mut a, mut b) = (self, other);
+        loop {
+            return match (a, b) {
+                (Term::Compound(x), Term::Compound(y)) => {
+                    if Arc::ptr_eq(x, y) {
+                        return true;
+                    }
+                    if x.name != y.name || x.args.len() != y.args.len() {
+                        return false;
+                    }
+                    let n = x.args.len();
+                    if x.args[..n - 1] != y.args[..n - 1] {
+                        return false;
+                    }
+                    a = &x.args[n - 1];
+                    b = &y.args[n - 1];
+                    continue;
+                }
+                (Term::Atom(x), Term::Atom(y)) | (Term::Var(x), Term::Var(y)) => x == y,
+                (Term::Int(x), Term::Int(y)) => x == y,
+                (Term::Float(x), Term::Float(y)) => x == y,
+                (Term::Str(x), Term::Str(y)) => x == y,
+                _ => false,
+            };
+        }
+    }
+}
+
+impl Eq for Term {}
+
+impl Hash for Term {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        let mut t = self;
+        loop {
+            std::mem::discriminant(t).hash(state);
+            match t {
+                Term::Atom(s) | Term::Var(s) => s.hash(state),
+                Term::Int(i) => i.hash(state),
+                Term::Float(f) => f.hash(state),
+                Term::Str(s) => s.hash(state),
+                Term::Compound(c) => {
+                    c.name.hash(state);
+                    c.args.len().hash(state);
+                    let n = c.args.len();
+                    for a in &c.args[..n - 1] {
+                        a.hash(state);
+                    }
+                    t = &c.args[n - 1];
+                    continue;
+                }
+            }
+            return;
+        }
+    }
+}
+
+impl PartialEq for Compound {
+    fn eq(&self, other: &Compound) -> bool {
+        self.name == other.name && self.args == other.args
+    }
+}
+
+impl Eq for Compound {}
 
 /// A float that is `Eq` and `Hash` by its bit pattern (with `-0.0` equal to `0.0`).
 #[derive(Clone, Copy, Debug)]
@@ -252,34 +339,42 @@ impl Term {
     /// Var < Number < Atom < String < Compound; numbers by value (Float before Int when equal);
     /// atoms alphabetically; compounds by arity, then name, then arguments left to right.
     pub fn compare(&self, other: &Term) -> Ordering {
-        let (a, b) = (self, other);
-        let class = a.order_class().cmp(&b.order_class());
-        if class != Ordering::Equal {
-            return class;
-        }
-        match (a, b) {
-            (Term::Var(x), Term::Var(y)) => x.name().cmp(y.name()),
-            (Term::Int(x), Term::Int(y)) => x.cmp(y),
-            (Term::Float(x), Term::Float(y)) => x.0.total_cmp(&y.0),
-            (Term::Int(x), Term::Float(y)) => compare_int_float(*x, y.0),
-            (Term::Float(x), Term::Int(y)) => compare_int_float(*y, x.0).reverse(),
-            (Term::Atom(x), Term::Atom(y)) => x.name().cmp(y.name()),
-            (Term::Str(x), Term::Str(y)) => x.cmp(y),
-            (Term::Compound(x), Term::Compound(y)) => x
-                .args
-                .len()
-                .cmp(&y.args.len())
-                .then_with(|| x.name.name().cmp(y.name.name()))
-                .then_with(|| {
-                    for (p, q) in x.args.iter().zip(y.args.iter()) {
+        let (mut a, mut b) = (self, other);
+        loop {
+            let class = a.order_class().cmp(&b.order_class());
+            if class != Ordering::Equal {
+                return class;
+            }
+            return match (a, b) {
+                (Term::Var(x), Term::Var(y)) => x.name().cmp(y.name()),
+                (Term::Int(x), Term::Int(y)) => x.cmp(y),
+                (Term::Float(x), Term::Float(y)) => x.0.total_cmp(&y.0),
+                (Term::Int(x), Term::Float(y)) => compare_int_float(*x, y.0),
+                (Term::Float(x), Term::Int(y)) => compare_int_float(*y, x.0).reverse(),
+                (Term::Atom(x), Term::Atom(y)) => x.name().cmp(y.name()),
+                (Term::Str(x), Term::Str(y)) => x.cmp(y),
+                (Term::Compound(x), Term::Compound(y)) => {
+                    let head = x
+                        .args
+                        .len()
+                        .cmp(&y.args.len())
+                        .then_with(|| x.name.name().cmp(y.name.name()));
+                    if head != Ordering::Equal {
+                        return head;
+                    }
+                    let n = x.args.len();
+                    for (p, q) in x.args[..n - 1].iter().zip(y.args[..n - 1].iter()) {
                         let o = p.compare(q);
                         if o != Ordering::Equal {
                             return o;
                         }
                     }
-                    Ordering::Equal
-                }),
-            _ => Ordering::Equal,
+                    a = &x.args[n - 1];
+                    b = &y.args[n - 1];
+                    continue;
+                }
+                _ => Ordering::Equal,
+            };
         }
     }
 }
@@ -325,7 +420,7 @@ mod tests {
 
     #[test]
     fn standard_order_of_terms() {
-        let mut ts = vec![
+        let mut ts = [
             Term::compound("f", vec![Term::atom("a")]),
             Term::atom("b"),
             Term::Int(3),
@@ -350,6 +445,18 @@ mod tests {
         let parts: Vec<String> = c.conjuncts().iter().map(|t| t.to_string()).collect();
         assert_eq!(parts, ["a", "b", "c"]);
         assert_eq!(Term::conjunction(vec![]), Term::atom("true"));
+    }
+
+    #[test]
+    fn long_lists_compare_hash_and_drop_without_recursion() {
+        let big = || Term::list((0..1_000_000).map(Term::Int));
+        let (a, b) = (big(), big());
+        assert_eq!(a, b);
+        assert_eq!(a.compare(&b), Ordering::Equal);
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        a.hash(&mut h);
+        drop(a);
+        drop(b);
     }
 
     #[test]

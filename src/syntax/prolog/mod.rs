@@ -1,14 +1,46 @@
 //! The Prolog reader: Prolog text (KR content of `.goal` files, `.pl` files, queries) to terms
 //! with byte spans, using GOAL's fixed operator table.
+//!
+//! Reading happens in three steps: `lexer` (logos) makes tokens, the lalrpop grammar
+//! `grammar/prolog.lalrpop` finds the structure (arguments, lists, brackets), and `resolve`
+//! applies operator priorities to each flat operator sequence.
+
+mod item;
+pub mod lexer;
+mod resolve;
 
 use crate::diag::{Diagnostic, Span};
 use crate::term::Term;
+use lalrpop_util::{lalrpop_mod, ParseError};
+use lexer::{LexError, Tok};
+
+lalrpop_mod!(
+    #[allow(clippy::all, unused_parens, dead_code)]
+    grammar,
+    "/prolog.rs"
+);
+
+/// Diagnostic code of Prolog syntax errors.
+pub const SYNTAX_ERROR: &str = "E0010";
 
 /// Byte spans of a term and, for compound terms, of each argument (list cells: head and tail).
 #[derive(Clone, Debug, PartialEq, Eq, Default)]
 pub struct TermSpans {
     pub span: Span,
     pub args: Vec<TermSpans>,
+}
+
+impl Drop for TermSpans {
+    fn drop(&mut self) {
+        // Spans of a long list nest as deep as the list is long: drop them with a heap stack.
+        if self.args.iter().all(|a| a.args.is_empty()) {
+            return;
+        }
+        let mut stack = std::mem::take(&mut self.args);
+        while let Some(mut s) = stack.pop() {
+            stack.append(&mut s.args);
+        }
+    }
 }
 
 /// A term read from source text, with its spans.
@@ -25,30 +57,196 @@ pub struct Reader {
     next_anonymous: u32,
 }
 
+type Spanned = (usize, Tok, usize);
+
 impl Reader {
     /// A reader for text that comes from `file` (used in diagnostics).
     pub fn new(file: impl Into<String>) -> Reader {
-        Reader { file: file.into(), next_anonymous: 0 }
+        Reader {
+            file: file.into(),
+            next_anonymous: 0,
+        }
     }
 
     /// Reads one term (priority up to 1200, no final `.`) from `text`, which starts at byte
     /// `offset` of the file: the content of `pre{}`, `bel(...)`, a query, ...
     pub fn term(&mut self, text: &str, offset: usize) -> Result<Located, Diagnostic> {
-        let _ = (text, &mut self.next_anonymous);
-        Err(Diagnostic::error("E0001", "the Prolog reader is not built yet", self.file.clone(), offset..offset))
+        let tokens = self.tokens(text, offset)?;
+        if tokens.is_empty() {
+            return Err(self.empty(offset, text.len()));
+        }
+        grammar::TermParser::new()
+            .parse(tokens)
+            .map_err(|e| self.parse_error(e, offset + text.len()))
     }
 
     /// Reads a comma-separated list of terms (priority 999 each): action and module arguments.
     pub fn term_list(&mut self, text: &str, offset: usize) -> Result<Vec<Located>, Diagnostic> {
-        self.term(text, offset).map(|t| vec![t])
+        let tokens = self.tokens(text, offset)?;
+        if tokens.is_empty() {
+            return Err(self.empty(offset, text.len()));
+        }
+        grammar::ArgsParser::new()
+            .parse(tokens)
+            .map_err(|e| self.parse_error(e, offset + text.len()))
     }
 
     /// Reads `.`-terminated clauses: `knowledge`, `beliefs`, `goals` blocks and `.pl` files.
     /// Recovers after a syntax error at the next end token, so every error is reported.
     pub fn clauses(&mut self, text: &str, offset: usize) -> (Vec<Located>, Vec<Diagnostic>) {
-        match self.term(text, offset) {
-            Ok(t) => (vec![t], vec![]),
-            Err(d) => (vec![], vec![d]),
+        let tokens = match self.tokens(text, offset) {
+            Ok(t) => t,
+            Err(d) => return (Vec::new(), vec![d]),
+        };
+        let mut clauses = Vec::new();
+        let mut errors = Vec::new();
+        let mut chunk: Vec<Spanned> = Vec::new();
+        for (l, tok, r) in tokens {
+            if tok != Tok::End {
+                chunk.push((l, tok, r));
+                continue;
+            }
+            if chunk.is_empty() {
+                errors.push(
+                    Diagnostic::error(
+                        SYNTAX_ERROR,
+                        "a `.` with no clause before it",
+                        self.file.clone(),
+                        l..r,
+                    )
+                    .with_hint("remove the extra `.`"),
+                );
+                continue;
+            }
+            let end = l;
+            match grammar::TermParser::new().parse(std::mem::take(&mut chunk)) {
+                Ok(t) => clauses.push(t),
+                Err(e) => errors.push(self.parse_error(e, end)),
+            }
+        }
+        if let Some((_, _, last_end)) = chunk.last() {
+            let last_end = *last_end;
+            errors.push(
+                Diagnostic::error(
+                    SYNTAX_ERROR,
+                    "missing `.` at the end of the clause",
+                    self.file.clone(),
+                    last_end..last_end,
+                )
+                .with_hint("end every clause with a `.` followed by a space or a new line"),
+            );
+        }
+        (clauses, errors)
+    }
+
+    fn tokens(&mut self, text: &str, offset: usize) -> Result<Vec<Spanned>, Diagnostic> {
+        lexer::tokenize(text, offset, &mut self.next_anonymous).map_err(|e: LexError| {
+            let d = Diagnostic::error(SYNTAX_ERROR, e.message, self.file.clone(), e.span);
+            match e.hint {
+                Some(h) => d.with_hint(h),
+                None => d,
+            }
+        })
+    }
+
+    fn empty(&self, offset: usize, len: usize) -> Diagnostic {
+        Diagnostic::error(
+            SYNTAX_ERROR,
+            "expected a term, found nothing",
+            self.file.clone(),
+            offset..offset + len,
+        )
+        .with_hint("write a Prolog term here")
+    }
+
+    fn parse_error(
+        &self,
+        e: ParseError<usize, Tok, item::ItemError>,
+        end_of_text: usize,
+    ) -> Diagnostic {
+        let file = self.file.clone();
+        match e {
+            ParseError::User { error } => {
+                let d = Diagnostic::error(SYNTAX_ERROR, error.message, file, error.span);
+                match error.hint {
+                    Some(h) => d.with_hint(h),
+                    None => d,
+                }
+            }
+            ParseError::InvalidToken { location } => {
+                Diagnostic::error(SYNTAX_ERROR, "invalid token", file, location..location + 1)
+            }
+            ParseError::UnrecognizedEof { location, expected } => {
+                let at = location.min(end_of_text);
+                Diagnostic::error(SYNTAX_ERROR, "unexpected end of the term", file, at..at)
+                    .with_hint(expected_hint(&expected))
+            }
+            ParseError::UnrecognizedToken {
+                token: (l, tok, r),
+                expected,
+            } => Diagnostic::error(
+                SYNTAX_ERROR,
+                format!("unexpected {}", describe(&tok)),
+                file,
+                l..r,
+            )
+            .with_hint(expected_hint(&expected)),
+            ParseError::ExtraToken { token: (l, tok, r) } => Diagnostic::error(
+                SYNTAX_ERROR,
+                format!("unexpected {}", describe(&tok)),
+                file,
+                l..r,
+            ),
         }
     }
 }
+
+/// A token as a user would name it.
+fn describe(tok: &Tok) -> String {
+    match tok {
+        Tok::Name(s) | Tok::Functor(s) => format!("`{}`", s.name()),
+        Tok::Var(v) => format!("variable `{}`", v.name()),
+        Tok::Int(i) => format!("number `{i}`"),
+        Tok::Float(f) => format!("number `{f}`"),
+        Tok::Str(_) | Tok::BackQuoted(_) => "string".into(),
+        Tok::Open => "`(`".into(),
+        Tok::Close => "`)`".into(),
+        Tok::LBracket => "`[`".into(),
+        Tok::RBracket => "`]`".into(),
+        Tok::LBrace => "`{`".into(),
+        Tok::RBrace => "`}`".into(),
+        Tok::Comma => "`,`".into(),
+        Tok::Bar => "`|`".into(),
+        Tok::End => "end of clause `.`".into(),
+    }
+}
+
+fn expected_hint(expected: &[String]) -> String {
+    let words: Vec<&str> = expected
+        .iter()
+        .map(|e| match e.trim_matches('"') {
+            "name" | "functor" | "var" | "int" | "float" | "string" | "backquoted" | "(" | "["
+            | "{" => "a term",
+            ")" => "`)`",
+            "]" => "`]`",
+            "}" => "`}`",
+            "," => "`,`",
+            "|" => "`|`",
+            "." => "`.`",
+            _ => "a term",
+        })
+        .fold(Vec::new(), |mut acc, w| {
+            if !acc.contains(&w) {
+                acc.push(w)
+            }
+            acc
+        });
+    match words.as_slice() {
+        [] => "check the syntax here".into(),
+        [one] => format!("expected {one} here"),
+        many => format!("expected one of: {}", many.join(", ")),
+    }
+}
+
+#[cfg(test)]
+mod tests;
