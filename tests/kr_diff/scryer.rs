@@ -23,6 +23,21 @@ pub const PRELUDE: &str = r#"
 
 not(G) :- \+ call(G).
 
+'$goal_is'(X, E) :- '$goal_eval'(E, V), X = V.
+'$goal_cmp'(Op, A, B) :- '$goal_eval'(A, VA), '$goal_eval'(B, VB), G =.. [Op, VA, VB], call(G).
+'$goal_eval'(E, V) :- var(E), !, V is E.
+'$goal_eval'(A / B, V) :- !, '$goal_eval'(A, VA), '$goal_eval'(B, VB),
+    ( integer(VA), integer(VB), VB =\= 0, VA mod VB =:= 0 -> V is VA // VB ; V is VA / VB ).
+'$goal_eval'(A ** B, V) :- !, '$goal_eval'(A, VA), '$goal_eval'(B, VB),
+    ( integer(VA), integer(VB), VB >= 0 -> V is VA ^ VB ; V is VA ** VB ).
+'$goal_eval'(E, V) :- compound(E), E \= [_|_], !, E =.. [F|Args], '$goal_eval_args'(Args, Vs),
+    E2 =.. [F|Vs], V is E2.
+'$goal_eval'(E, V) :- V is E.
+'$goal_eval_args'([], []).
+'$goal_eval_args'([A|As], [V|Vs]) :- '$goal_eval'(A, V), '$goal_eval_args'(As, Vs).
+
+'$goal_softcut'(C, T, E) :- ( \+ call(C) -> call(E) ; call(C), call(T) ).
+
 last([X], X) :- !.
 last([_|T], X) :- last(T, X).
 
@@ -178,9 +193,23 @@ impl Scryer {
 
     /// Runs a query and returns every leaf answer, or the error term it raised.
     pub fn solutions(&mut self, goal: &Term) -> Result<Vec<LeafAnswer>, Term> {
-        let text = format!("{}.", goal);
+        let text = format!("{}.", fix_softcut_pairs(&to_scryer(goal)));
+        // `run_query` panics on text it cannot parse; report that as an error instead.
+        let machine = &mut self.machine;
+        let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            machine.run_query(text.clone()).collect::<Vec<_>>()
+        }));
+        let answers = match run {
+            Ok(a) => a,
+            Err(_) => {
+                return Err(Term::compound(
+                    Sym::intern("scryer_cannot_parse"),
+                    vec![Term::atom(&text)],
+                ))
+            }
+        };
         let mut out = Vec::new();
-        for a in self.machine.run_query(text) {
+        for a in answers {
             match a {
                 Ok(LeafAnswer::False) => break,
                 Ok(LeafAnswer::Exception(e)) => return Err(from_scryer(&e)),
@@ -210,7 +239,52 @@ impl Default for Scryer {
 
 /// A clause as Prolog text ending in `.` and a newline.
 pub fn clause_text(clause: &Term) -> String {
-    format!("{} .\n", clause)
+    format!("{} .\n", fix_softcut_pairs(&to_scryer(clause)))
+}
+
+/// Rewrites what scryer 0.10 cannot read or reads differently on purpose:
+/// - it has no `*->` operator, so `(C *-> T ; E)` becomes `'$goal_softcut'(C, T, E)` (same
+///   answers for goals without side effects) and `C *-> T` becomes `(C, T)`;
+/// - GOAL evaluates like SWI-Prolog, where `/` of two integers is an integer when exact and
+///   `**` of two integers is an integer, while scryer gives floats: `is/2` and the arithmetic
+///   comparisons go through the prelude's `'$goal_eval'/2`, which applies SWI's meaning.
+pub fn to_scryer(t: &Term) -> Term {
+    let Term::Compound(c) = t else {
+        return t.clone();
+    };
+    let args: Vec<Term> = c.args.iter().map(to_scryer).collect();
+    match (c.name.name(), args.as_slice()) {
+        (";", [cond, e]) => match cond {
+            Term::Compound(ct) if ct.name.name() == "$goal_softcut_pair" => Term::compound(
+                Sym::intern("$goal_softcut"),
+                vec![ct.args[0].clone(), ct.args[1].clone(), e.clone()],
+            ),
+            _ => Term::compound(c.name, args),
+        },
+        ("is", [x, e]) => Term::compound(Sym::intern("$goal_is"), vec![x.clone(), e.clone()]),
+        ("<" | ">" | "=<" | ">=" | "=:=" | "=\\=", [l, r]) => Term::compound(
+            Sym::intern("$goal_cmp"),
+            vec![Term::Atom(c.name), l.clone(), r.clone()],
+        ),
+        ("*->", [cond, then]) => Term::compound(
+            Sym::intern("$goal_softcut_pair"),
+            vec![cond.clone(), then.clone()],
+        ),
+        _ => Term::compound(c.name, args),
+    }
+}
+
+/// A `C *-> T` left outside a disjunction means `(C, T)`.
+fn fix_softcut_pairs(t: &Term) -> Term {
+    let Term::Compound(c) = t else {
+        return t.clone();
+    };
+    let args: Vec<Term> = c.args.iter().map(fix_softcut_pairs).collect();
+    if c.name.name() == "$goal_softcut_pair" {
+        Term::compound(Sym::intern(","), args)
+    } else {
+        Term::compound(c.name, args)
+    }
 }
 
 /// Converts a scryer answer term to the crate's `Term` (strings are lists of one-char atoms
