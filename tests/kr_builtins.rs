@@ -224,11 +224,11 @@ fn comparison_and_types() {
     assert_eq!(one("compare(O, 1, a)"), "O = '<'");
     assert_eq!(
         one("msort([b, 1, a, 2.0, f(x), \"s\", Z], L), L = [V|_], V == Z"),
-        "L = [Z,2.0,1,a,b,\"s\",f(x)], V = Z"
+        "L = [Z,1,2.0,a,b,\"s\",f(x)], V = Z"
     );
     assert_eq!(one("a @< b, f(a) @> b, 1 @< a, f(a,b) @> g(a)"), "true");
     assert_eq!(one("X == X, X \\== Y"), "true");
-    assert_eq!(one("f(A, B) =@= f(C, D), f(A, A) \\=@= f(C, D)"), "true");
+    assert_eq!(one("f(A, B) =@= f(C, D), \\+ f(A, A) =@= f(C, D)"), "true");
     assert_eq!(one("var(X), nonvar(a), atom(a), number(1.5), integer(3), float(1.0), atomic(\"s\"), compound(f(x)), callable(a), is_list([1]), string(\"s\"), ground(f(a))"), "true");
     assert_eq!(one("atom(1)"), "false");
     assert_eq!(one("is_list([a|_])"), "false");
@@ -259,7 +259,10 @@ fn term_construction() {
         one("arg(x, f(a), _)"),
         "error: error(type_error(integer,x),arg/3)"
     );
-    assert_eq!(one("T =.. L"), "error: error(instantiation_error,('=..')/2)");
+    assert_eq!(
+        one("T =.. L"),
+        "error: error(instantiation_error,('=..')/2)"
+    );
 }
 
 #[test]
@@ -289,9 +292,6 @@ fn lists() {
     assert_eq!(
         one("sort(1, @<, [f(2, a), f(1, b), f(2, c)], X)"),
         "X = [f(1,b),f(2,a)]"
-    );
-    assert_eq!(
-        "false"
     );
     assert_eq!(one("keysort([b-1, a-2, b-0], X)"), "X = [a-2,b-1,b-0]");
     assert_eq!(ask("", "permutation([1, 2, 3], P)").len(), 6);

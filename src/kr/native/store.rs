@@ -300,10 +300,12 @@ impl Store {
                 Term::Compound(c) => {
                     let p = self.heap.len() as u32;
                     self.heap.push(Cell::Fun(c.name, c.args.len() as u32));
-                    for (i, a) in c.args.iter().enumerate() {
-                        let s = p + 1 + i as u32;
-                        self.heap.push(Cell::Ref(s));
-                        work.push((s, a));
+                    for i in 0..c.args.len() {
+                        self.heap.push(Cell::Ref(p + 1 + i as u32));
+                    }
+                    // Left to right, so that variables are numbered in reading order.
+                    for (i, a) in c.args.iter().enumerate().rev() {
+                        work.push((p + 1 + i as u32, a));
                     }
                     Cell::Ptr(p)
                 }
