@@ -204,7 +204,18 @@ impl<'a, 'm> Solver<'a, 'm> {
         self.m.st.unify(a, b)
     }
 
-    fn push_frame(&mut self, goal: Goal, next: u32, cut: u32, depth: u32) -> u32 {
+    /// The depth of a frame: the length of its continuation (so tail calls do not deepen).
+    #[inline]
+    fn depth_of(&self, next: u32) -> u32 {
+        if next == NONE {
+            0
+        } else {
+            self.m.frames[next as usize].depth
+        }
+    }
+
+    fn push_frame(&mut self, goal: Goal, next: u32, cut: u32, _depth: u32) -> u32 {
+        let depth = self.depth_of(next) + 1;
         self.m.frames.push(Frame {
             goal,
             next,
@@ -253,6 +264,13 @@ impl<'a, 'm> Solver<'a, 'm> {
                 return Ok(true);
             }
             let f = self.m.frames[self.cont as usize];
+            // The newest frame, not protected by a choicepoint, is garbage once read: reuse
+            // its slot (this keeps deterministic tail recursion in constant frame space).
+            if self.cont as usize + 1 == self.m.frames.len()
+                && self.m.cps.last().is_none_or(|c| c.frames <= self.cont)
+            {
+                self.m.frames.pop();
+            }
             let ok = match f.goal {
                 Goal::Call(g) => self.call(g, f.next, f.cut, f.depth)?,
                 Goal::CutTo(b) => {
@@ -430,7 +448,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                     None
                 };
                 let b = self.m.cps.len() as u32;
-                if depth >= self.cx.limits.max_depth {
+                if depth > self.cx.limits.max_depth {
                     return Err(KrError::Depth {
                         predicate: format!("{}/{}", Term::Atom(name), arity),
                         limit: self.cx.limits.max_depth,
@@ -542,13 +560,20 @@ impl<'a, 'm> Solver<'a, 'm> {
             }
         }
         let mut nx = next;
+        let mut d = if next == NONE {
+            0
+        } else {
+            m.frames[next as usize].depth
+        };
+        let _ = depth;
         for g in cl.body.iter().rev() {
             let c = cl.code.build(&mut m.st, *g, &mut m.slots);
+            d += 1;
             m.frames.push(Frame {
                 goal: Goal::Call(c),
                 next: nx,
                 cut,
-                depth: depth + 1,
+                depth: d,
             });
             nx = m.frames.len() as u32 - 1;
         }
