@@ -106,6 +106,10 @@ impl Code {
 
     /// Copies a heap term into this code (variables numbered through `vars`, by address).
     pub fn add_cell(&mut self, store: &Store, c: Cell, vars: &mut Vec<u32>) -> Cell {
+        match store.deref(c) {
+            c @ (Cell::Atom(_) | Cell::Int(_) | Cell::Flt(_)) => return c,
+            _ => {}
+        }
         let mut root = UNSET;
         let mut work: Vec<(Option<usize>, Cell)> = vec![(None, c)];
         while let Some((slot, c)) = work.pop() {
@@ -197,6 +201,34 @@ impl Code {
                 store.heap[base as usize]
             }
             other => other,
+        }
+    }
+
+    /// Like [`Code::unify`], with the common cases (a new variable, a constant) inline.
+    #[inline]
+    pub fn unify_arg(&self, store: &mut Store, code: Cell, heap: Cell, slots: &mut [Cell]) -> bool {
+        match code {
+            Cell::Ref(n) if matches!(slots[n as usize], Cell::Ref(u32::MAX)) => {
+                slots[n as usize] = heap;
+                true
+            }
+            Cell::Atom(x) => match store.deref(heap) {
+                Cell::Atom(y) => x == y,
+                Cell::Ref(a) => {
+                    store.bind(a, code);
+                    true
+                }
+                _ => false,
+            },
+            Cell::Int(x) => match store.deref(heap) {
+                Cell::Int(y) => x == y,
+                Cell::Ref(a) => {
+                    store.bind(a, code);
+                    true
+                }
+                _ => false,
+            },
+            _ => self.unify(store, code, heap, slots),
         }
     }
 
