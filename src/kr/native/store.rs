@@ -154,15 +154,6 @@ impl Store {
         self.heap[(p + 1 + i) as usize]
     }
 
-    /// The text of an atom or string cell.
-    pub fn text(&self, c: Cell) -> Option<&str> {
-        match self.deref(c) {
-            Cell::Atom(s) => Some(s.name()),
-            Cell::Str(i) => Some(&self.strs[i as usize]),
-            _ => None,
-        }
-    }
-
     /// If `c` is a list cell `[H|T]`, its head and tail.
     #[inline]
     pub fn cons(&self, c: Cell) -> Option<(Cell, Cell)> {
