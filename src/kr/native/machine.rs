@@ -847,6 +847,12 @@ impl<'a, 'm> Solver<'a, 'm> {
                 Ok(true)
             }
             B::Findall | B::Findall4 => {
+                let (_, end) = self.m.st.list_items(self.a(p, 2));
+                if !matches!(end, Cell::Ref(_) | Cell::Atom(wk::NIL)) {
+                    let r = self.a(p, 2);
+                    let arity = if b == B::Findall4 { 4 } else { 3 };
+                    return Err(builtins::type_error(self, "list", r, "findall", arity));
+                }
                 let bag = self.m.bags.len() as u32;
                 self.m.bags.push(Bag::default());
                 let tail = if b == B::Findall4 {
