@@ -111,14 +111,17 @@ fn goal(rng: &mut ChaCha8Rng, depth: u32, top: bool) -> Term {
         0..=49 => literal(rng, top),
         50..=57 => naf(literal(rng, top)),
         58..=61 => c("not", vec![literal(rng, top)]),
-        62..=66 => op(
-            ["\\==", "==", "@<", "\\=", "="]
+        62..=65 => op(
+            ["\\==", "==", "\\=", "="]
                 .choose(rng)
                 .copied()
                 .unwrap_or("=="),
             arg(rng),
             arg(rng),
         ),
+        // The standard order of two distinct unbound variables is implementation-defined (ISO
+        // 7.2.1): compare with a constant only.
+        66 => op("@<", arg(rng), constant(rng)),
         67..=74 if depth > 0 => and(vec![goal(rng, depth - 1, top), goal(rng, depth - 1, top)]),
         75..=79 if depth > 0 => op(";", goal(rng, depth - 1, top), goal(rng, depth - 1, top)),
         80..=83 if depth > 0 => op(
