@@ -18,10 +18,17 @@
 //!   integer; scryer's `is/2` and comparisons are routed through a prelude evaluator that does
 //!   the same (`scryer::to_scryer`);
 //! - `*->` (soft cut) is not an operator in scryer 0.10: rewritten to an equivalent prelude call;
+//!   `ignore/1` is missing in scryer 0.10: defined in the prelude;
+//! - scryer 0.10 bugs worked around: a cut in an if-then-else condition cuts the else branch too
+//!   (conditions are sent under `call/1`); a discontiguous predicate keeps only its last group of
+//!   clauses (clauses are grouped by predicate before loading); an error escaping a query comes
+//!   back as the answer of later queries (every query runs under `catch/3`);
 //! - avoided rather than mapped: strings (`"..."` are strings in GOAL/SWI, char lists in
 //!   scryer), the standard order of mixed integers and floats (SWI compares by value, scryer
 //!   puts every float first as ISO says), and one-character atoms as list elements (scryer 0.10
-//!   takes `[d,2]` for a partial string and rejects it as a list).
+//!   takes `[d,2]` for a partial string and rejects it as a list), the standard order of two
+//!   distinct unbound variables (implementation-defined), and the error cases listed with
+//!   `gen::error_queries` where SWI itself departs from ISO.
 
 #[path = "kr_diff/build.rs"]
 mod build;
