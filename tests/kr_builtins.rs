@@ -276,6 +276,13 @@ fn lists() {
     assert_eq!(one("append([[1], [2, 3], []], L)"), "L = [1,2,3]");
     assert_eq!(one("length([a, b], N)"), "N = 2");
     assert_eq!(one("length(L, 2)"), "L = [_R0,_R1]");
+    assert_eq!(one("length([a|T], 3)"), "T = [_R0,_R1]");
+    assert_eq!(
+        ask("", "length([a|T], N), N > 2, !"),
+        ["T = [_R0,_R1], N = 3"]
+    );
+    assert_eq!(one("length(L, -1)"), "false");
+    assert_eq!(one("length(a, N)"), "false");
     assert_eq!(ask("", "length(L, N), N >= 2, !"), ["L = [_R0,_R1], N = 2"]);
     assert_eq!(
         one("nth0(1, [a, b, c], X), nth1(1, [a, b, c], Y)"),
