@@ -15,6 +15,8 @@ pub(crate) struct Clause {
     pub code: Code,
     pub head: Cell,
     pub body: Vec<Cell>,
+    /// The predicate each body goal calls, resolved when loading finishes.
+    pub preds: Vec<Option<PredRef>>,
     pub nslots: u32,
     pub key: Option<Key>,
 }
@@ -350,6 +352,7 @@ impl Knowledge {
         self.preds[idx as usize].clauses.push(Clause {
             code,
             head: head_cell,
+            preds: Vec::new(),
             body: body_cells,
             nslots: vars.len() as u32,
             key,
@@ -359,8 +362,23 @@ impl Knowledge {
 
     /// Builds the indexes; call after the last `add`.
     pub(crate) fn finish(&mut self) {
+        let table = &self.table;
         for p in &mut self.preds {
             p.index();
+            for c in &mut p.clauses {
+                c.preds = c
+                    .body
+                    .iter()
+                    .map(|g| {
+                        let f = match *g {
+                            Cell::Atom(s) => Some((s, 0)),
+                            Cell::Ptr(off) => c.code.cells[off as usize].fun(),
+                            _ => None,
+                        };
+                        f.and_then(|f| table.get(&f).copied())
+                    })
+                    .collect();
+            }
         }
     }
 

@@ -20,6 +20,8 @@ pub(crate) struct Frame {
     pub next: u32,
     pub cut: u32,
     pub depth: u32,
+    /// What the goal's predicate resolves to, when known at compile time (saves a lookup).
+    pub pred: Option<PredRef>,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -149,6 +151,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             next: NONE,
             cut: 0,
             depth: 0,
+            pred: None,
         });
         Solver {
             m,
@@ -221,6 +224,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             next,
             cut,
             depth,
+            pred: None,
         });
         self.m.frames.len() as u32 - 1
     }
@@ -272,7 +276,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                 self.m.frames.pop();
             }
             let ok = match f.goal {
-                Goal::Call(g) => self.call(g, f.next, f.cut, f.depth)?,
+                Goal::Call(g) => self.call(g, f.next, f.cut, f.depth, f.pred)?,
                 Goal::CutTo(b) => {
                     self.m.cps.truncate(b as usize);
                     self.cont = f.next;
@@ -413,7 +417,14 @@ impl<'a, 'm> Solver<'a, 'm> {
     }
 
     /// Calls goal `g`.
-    fn call(&mut self, g: Cell, next: u32, cut: u32, depth: u32) -> KrResult<bool> {
+    fn call(
+        &mut self,
+        g: Cell,
+        next: u32,
+        cut: u32,
+        depth: u32,
+        pred: Option<PredRef>,
+    ) -> KrResult<bool> {
         let g = self.m.st.deref(g);
         let (name, arity, p) = match g {
             Cell::Atom(s) => (s, 0, 0),
@@ -439,7 +450,11 @@ impl<'a, 'm> Solver<'a, 'm> {
                 limit: self.cx.limits.max_inferences,
             });
         }
-        match self.cx.kn.table.get(&(name, arity)).copied() {
+        let pred = match pred {
+            Some(r) => Some(r),
+            None => self.cx.kn.table.get(&(name, arity)).copied(),
+        };
+        match pred {
             Some(PredRef::Builtin(b)) => self.builtin(b, g, p, next, cut, depth),
             Some(r) => {
                 let key = if arity > 0 {
@@ -566,7 +581,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             m.frames[next as usize].depth
         };
         let _ = depth;
-        for g in cl.body.iter().rev() {
+        for (g, pred) in cl.body.iter().zip(&cl.preds).rev() {
             let c = cl.code.build(&mut m.st, *g, &mut m.slots);
             d += 1;
             m.frames.push(Frame {
@@ -574,6 +589,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                 next: nx,
                 cut,
                 depth: d,
+                pred: *pred,
             });
             nx = m.frames.len() as u32 - 1;
         }
