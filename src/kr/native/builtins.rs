@@ -105,8 +105,10 @@ pub(crate) fn library() -> &'static Knowledge {
         for clause in super::prelude::clauses() {
             k.add(&clause);
         }
+        // Convert to library references first, so that body goals resolve to them.
+        let mut k = k.into_library();
         k.finish();
-        k.into_library()
+        k
     })
 }
 
