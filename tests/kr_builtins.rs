@@ -533,3 +533,20 @@ fn iso_errors_for_bad_lists() {
         "A = 1, T = [2]"
     );
 }
+
+#[test]
+fn printing_deep_terms_is_an_error_not_a_crash() {
+    let p = "wrap(0, T, T) :- !. wrap(N, T0, T) :- N1 is N - 1, wrap(N1, f(T0), T).";
+    assert_eq!(
+        ask(p, "wrap(20000, z, T), format(atom(A), \"~w\", [T])"),
+        ["error: error(resource_error(print_depth),_)"]
+    );
+    // Long lists are not deep: they print.
+    assert_eq!(
+        ask(
+            p,
+            "\\+ \\+ (numlist(1, 20000, L), format(atom(A), \"~w\", [L]), atom_length(A, 108895))"
+        ),
+        ["true"]
+    );
+}

@@ -327,3 +327,22 @@ fn million_insert_delete_pairs_stay_flat() {
     assert_eq!(fb.len(), 100);
     assert!(fb.allocated_entries() <= before + 1);
 }
+
+#[test]
+fn kr_types_can_be_shared_and_sent_between_threads() {
+    fn shared<T: Send + Sync>() {}
+    fn sent<T: Send>() {}
+    shared::<Knowledge>();
+    shared::<FactBase>();
+    sent::<NativeEngine>();
+    let kn = load("p(1). p(2).");
+    let k2 = kn.clone();
+    let h = std::thread::spawn(move || {
+        let mut e = NativeEngine::new(3);
+        e.query(&View::beliefs(&k2, &[]), &read("p(X)"))
+            .unwrap()
+            .len()
+    });
+    assert_eq!(h.join().unwrap(), 2);
+    assert_eq!(kn.predicates().len(), 1);
+}

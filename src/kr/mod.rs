@@ -68,7 +68,10 @@
 //! Built-ins are native Rust (`builtins.rs`, `arith.rs`, `text.rs`, `lists.rs`, `output.rs`)
 //! or standard Prolog definitions compiled once per process (`prelude.rs`: `append/3`,
 //! `select/3`, `maplist/2..5`, `foldl/4..6`, `bagof/3`, `setof/3`, `aggregate_all/3,4`, ...).
-//! A program may redefine library predicates (`append/3`, ...) but not ISO built-ins.
+//! A program may redefine library predicates (`append/3`, ...) but not ISO built-ins; the
+//! library's own clauses keep calling the library definitions (as SWI-Prolog modules do).
+//! Body goals are resolved to their predicate when knowledge is loaded, so a call costs no
+//! table lookup.
 //! Output built-ins write to a buffer taken with [`Engine::take_output`]; `random/1` and friends
 //! use the engine's seeded ChaCha8 RNG. The solver's buffers are per thread and reused by every
 //! query, so an agent only holds its [`NativeEngine`] (limits, RNG, output buffer).

@@ -11,9 +11,33 @@ use crate::term::print::format_float;
 use crate::term::{well_known as wk, Style, Sym, Term};
 use std::sync::Arc;
 
-/// A heap term as text in the given style.
-pub(crate) fn text(s: &Solver, c: Cell, style: Style) -> String {
-    s.m.st.to_term(c, &mut VarNames::new(&[])).to_text(style)
+/// Deepest term the printer is asked to write (it recurses on nesting, except along list
+/// tails).
+const MAX_PRINT_DEPTH: usize = 10_000;
+
+/// A heap term as text in the given style (a resource error for terms nested too deeply to
+/// print safely).
+pub(crate) fn text(s: &Solver, c: Cell, style: Style) -> KrResult<String> {
+    let mut stack = vec![(c, 1usize)];
+    while let Some((c, d)) = stack.pop() {
+        if d > MAX_PRINT_DEPTH {
+            return Err(KrError::iso(
+                Term::compound("resource_error", vec![Term::atom("print_depth")]),
+                None,
+            ));
+        }
+        if let Cell::Ptr(p) = s.m.st.deref(c) {
+            match s.m.st.heap[p as usize].fun() {
+                Some((f, 2)) if f == wk::DOT => {
+                    stack.push((s.a(p, 0), d + 1));
+                    stack.push((s.a(p, 1), d));
+                }
+                Some((_, n)) => stack.extend((0..n).map(|i| (s.a(p, i), d + 1))),
+                None => {}
+            }
+        }
+    }
+    Ok(s.m.st.to_term(c, &mut VarNames::new(&[])).to_text(style))
 }
 
 fn format_error(msg: &str) -> KrError {
@@ -85,11 +109,11 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
             }
             'w' => {
                 let a = next_arg("w")?;
-                out.push_str(&text(s, a, Style::WRITE))
+                out.push_str(&text(s, a, Style::WRITE)?)
             }
             'p' | 'q' => {
                 let a = next_arg("q")?;
-                out.push_str(&text(s, a, Style::WRITEQ))
+                out.push_str(&text(s, a, Style::WRITEQ)?)
             }
             'a' => {
                 let a = next_arg("a")?;
@@ -256,14 +280,14 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
                 B::WriteCanonical => Style::CANONICAL,
                 _ => Style::WRITEQ,
             };
-            let mut t = text(s, s.a(p, last), style);
+            let mut t = text(s, s.a(p, last), style)?;
             if b == B::Writeln {
                 t.push('\n');
             }
             emit(s, &t);
         }
         B::WriteTerm => {
-            let t = text(s, s.a(p, if arity == 3 { 1 } else { 0 }), Style::WRITE);
+            let t = text(s, s.a(p, if arity == 3 { 1 } else { 0 }), Style::WRITE)?;
             emit(s, &t);
         }
         B::Nl => emit(s, "\n"),

@@ -515,7 +515,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
                 ("term_string", Kind::Str)
             };
             if !is_var(s, p, 0) {
-                let t = super::output::text(s, s.a(p, 0), Style::WRITEQ);
+                let t = super::output::text(s, s.a(p, 0), Style::WRITEQ)?;
                 let v = make(s, k, &t);
                 let y = s.a(p, 1);
                 unify_flow(s, y, v)
