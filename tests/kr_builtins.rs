@@ -550,3 +550,16 @@ fn printing_deep_terms_is_an_error_not_a_crash() {
         ["true"]
     );
 }
+
+#[test]
+fn cyclic_terms_give_errors_not_hangs() {
+    assert_eq!(
+        one("X = f(X)"),
+        "error: error(representation_error(cyclic_term),_)"
+    );
+    assert_eq!(
+        one("X = f(X), format(atom(_), \"~w\", [X])"),
+        "error: error(representation_error(cyclic_term),_)"
+    );
+    assert_eq!(one("\\+ \\+ X = f(X)"), "true");
+}

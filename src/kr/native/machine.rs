@@ -13,6 +13,14 @@ use rand_chacha::ChaCha8Rng;
 
 pub(crate) const NONE: u32 = u32::MAX;
 
+/// The error for a cyclic term where a finite one is needed (answers, output).
+pub(crate) fn cyclic() -> KrError {
+    KrError::iso(
+        Term::compound("representation_error", vec![Term::atom("cyclic_term")]),
+        None,
+    )
+}
+
 /// A goal waiting to run, with its continuation and cut barrier.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Frame {
@@ -171,11 +179,14 @@ impl<'a, 'm> Solver<'a, 'm> {
     }
 
     /// The current answer as a substitution over the query's variables.
-    pub fn answer(&self) -> Subst {
+    pub fn answer(&self) -> KrResult<Subst> {
         let mut names = VarNames::new(&self.query_vars);
         let mut s = Subst::new();
         for (v, c) in &self.query_vars {
             let d = self.m.st.deref(*c);
+            if self.m.st.is_cyclic(d) {
+                return Err(cyclic());
+            }
             if let (Cell::Ref(a), Cell::Ref(b)) = (d, *c) {
                 if a == b {
                     continue;
@@ -186,7 +197,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                 s.bind(*v, t);
             }
         }
-        s
+        Ok(s)
     }
 
     // ---- helpers used by built-ins ----

@@ -78,7 +78,7 @@ impl NativeEngine {
             while s.next(first)? {
                 first = false;
                 n += 1;
-                if !each(s.answer()) {
+                if !each(s.answer()?) {
                     break;
                 }
             }

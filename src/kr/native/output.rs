@@ -18,6 +18,9 @@ const MAX_PRINT_DEPTH: usize = 10_000;
 /// A heap term as text in the given style (a resource error for terms nested too deeply to
 /// print safely).
 pub(crate) fn text(s: &Solver, c: Cell, style: Style) -> KrResult<String> {
+    if s.m.st.is_cyclic(c) {
+        return Err(super::machine::cyclic());
+    }
     let mut stack = vec![(c, 1usize)];
     while let Some((c, d)) = stack.pop() {
         if d > MAX_PRINT_DEPTH {

@@ -528,6 +528,27 @@ impl Store {
         }
     }
 
+    /// True when the term is cyclic (possible without the occurs check, e.g. `X = f(X)`):
+    /// an acyclic term is never deeper than the heap has cells.
+    pub fn is_cyclic(&self, c: Cell) -> bool {
+        if !matches!(self.deref(c), Cell::Ptr(_)) {
+            return false;
+        }
+        let limit = self.heap.len() + 1;
+        let mut stack = vec![(c, 1usize)];
+        while let Some((c, d)) = stack.pop() {
+            if d > limit {
+                return true;
+            }
+            if let Cell::Ptr(p) = self.deref(c) {
+                if let Cell::Fun(_, n) = self.heap[p as usize] {
+                    stack.extend((0..n).map(|i| (self.arg(p, i), d + 1)));
+                }
+            }
+        }
+        false
+    }
+
     /// True when the term has no unbound variables.
     pub fn is_ground(&self, c: Cell) -> bool {
         let mut stack = vec![c];
