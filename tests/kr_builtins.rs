@@ -563,3 +563,22 @@ fn cyclic_terms_give_errors_not_hangs() {
     );
     assert_eq!(one("\\+ \\+ X = f(X)"), "true");
 }
+
+#[test]
+fn cyclic_terms_in_unification_and_comparison_stop() {
+    for q in [
+        "X = f(X), Y = f(Y), X = Y",
+        "X = f(X), Y = f(Y), X == Y",
+        "X = f(X), copy_term(X, Y)",
+        "X = f(X), ground(X)",
+        "X = f(X, Z), term_variables(X, L)",
+        "X = f(X), findall(X, true, L)",
+        "X = f(X), Y = f(Y), compare(O, X, Y)",
+    ] {
+        assert_eq!(
+            one(q),
+            "error: error(representation_error(cyclic_term),_)",
+            "{q}"
+        );
+    }
+}

@@ -172,10 +172,15 @@ impl<'a, 'm> Solver<'a, 'm> {
 
     /// The next answer (`Ok(false)` when there are no more).
     pub fn next(&mut self, first: bool) -> KrResult<bool> {
-        if !first && !self.backtrack()? {
-            return Ok(false);
+        let found = if !first && !self.backtrack()? {
+            false
+        } else {
+            self.run()?
+        };
+        if self.m.st.cyclic.get() {
+            return Err(cyclic());
         }
-        self.run()
+        Ok(found)
     }
 
     /// The current answer as a substitution over the query's variables.
@@ -275,6 +280,9 @@ impl<'a, 'm> Solver<'a, 'm> {
 
     fn run(&mut self) -> KrResult<bool> {
         loop {
+            if self.m.st.cyclic.get() {
+                return Err(cyclic());
+            }
             if self.cont == NONE {
                 return Ok(true);
             }
@@ -322,6 +330,9 @@ impl<'a, 'm> Solver<'a, 'm> {
     /// Resumes the newest choicepoint; false when none is left.
     fn backtrack(&mut self) -> KrResult<bool> {
         loop {
+            if self.m.st.cyclic.get() {
+                return Err(cyclic());
+            }
             let Some(ch) = self.m.cps.last().copied() else {
                 return Ok(false);
             };
