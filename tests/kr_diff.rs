@@ -89,15 +89,15 @@ fn formal_part(printed: &str) -> String {
 const KNOWN_DISAGREEMENTS: &[(&str, &str)] = &[];
 
 /// Runs every query of `program` on both engines; returns the disagreements as messages.
-/// With `beliefs`, the program's ground facts go into a belief base (a set: duplicates are
-/// dropped on both sides) and only the rules into knowledge.
+/// Unless `facts` is `Knowledge`, the program's ground facts go into a belief base or a goal (a
+/// set: duplicates are dropped on both sides) and only the rules into knowledge.
 fn compare(
     program: &Program,
     scryer: &mut Scryer,
     native: &mut native::Native,
-    beliefs: bool,
+    at: native::Facts,
 ) -> Vec<String> {
-    let loaded = if beliefs {
+    let loaded = if at != native::Facts::Knowledge {
         let (facts, rules): (Vec<Term>, Vec<Term>) = program
             .clauses
             .iter()
@@ -110,7 +110,7 @@ fn compare(
             }
         }
         scryer.load(&[rules.clone(), unique.clone()].concat());
-        native.load_split(&rules, &unique)
+        native.load_split(&rules, &unique, at)
     } else {
         scryer.load(&program.clauses);
         native.load(&program.clauses)
@@ -204,17 +204,17 @@ fn report(failures: &[String], total: usize) {
 }
 
 fn run_programs(programs: Vec<Program>) {
-    run_programs_with(programs, false)
+    run_programs_with(programs, native::Facts::Knowledge)
 }
 
-fn run_programs_with(programs: Vec<Program>, beliefs: bool) {
+fn run_programs_with(programs: Vec<Program>, facts: native::Facts) {
     let total = programs.iter().map(|p| p.queries.len()).sum();
     let mut failures = Vec::new();
     for p in &programs {
         // A fresh scryer machine per program: modules loaded into one machine are not kept apart.
         let mut scryer = Scryer::new();
         let mut native = native::Native::new();
-        failures.extend(compare(p, &mut scryer, &mut native, beliefs));
+        failures.extend(compare(p, &mut scryer, &mut native, facts));
     }
     println!("{total} queries over {} programs compared", programs.len());
     report(&failures, total);
@@ -231,7 +231,14 @@ fn generated_fact_sets_agree() {
 fn generated_fact_sets_in_a_belief_base_agree() {
     let mut rng = ChaCha8Rng::seed_from_u64(4);
     let programs = (0..4).map(|_| gen::fact_set(&mut rng, 150)).collect();
-    run_programs_with(programs, true);
+    run_programs_with(programs, native::Facts::Beliefs);
+}
+
+#[test]
+fn generated_fact_sets_as_goal_facts_agree() {
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let programs = (0..2).map(|_| gen::fact_set(&mut rng, 150)).collect();
+    run_programs_with(programs, native::Facts::Goal);
 }
 
 #[test]
