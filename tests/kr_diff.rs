@@ -2,6 +2,9 @@
 //! generated fact sets, fixed knowledge programs (family tree, blocks world, path finding) and
 //! generated list/arithmetic queries.
 //!
+//! Run with `cargo test --test kr_diff`; add `-- --nocapture` for per-program timings, and set
+//! `KR_DIFF_STATS=1` (`=all` for every answer) to print what scryer answers for each program.
+//!
 //! Both sides are compared in a canonical printed form (`scryer::Outcome`): the answers of a query
 //! are the instances of the template `ans(V1..Vn)` of its named variables, in order, with variables
 //! renamed by first appearance; an error is compared on the formal part of `error(Formal, _)`
