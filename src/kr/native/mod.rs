@@ -61,6 +61,18 @@ impl NativeEngine {
         query: &Term,
         each: &mut dyn FnMut(Subst) -> bool,
     ) -> KrResult<usize> {
+        self.solve_inner(view, query, true, each)
+    }
+
+    /// [`NativeEngine::solve`]; with `convert` false, answers are not converted to terms (the
+    /// callback gets empty substitutions).
+    fn solve_inner(
+        &mut self,
+        view: &View,
+        query: &Term,
+        convert: bool,
+        each: &mut dyn FnMut(Subst) -> bool,
+    ) -> KrResult<usize> {
         let lib = builtins::library();
         let mut run = |m: &mut Machine| -> KrResult<usize> {
             let cx = Ctx {
@@ -78,7 +90,8 @@ impl NativeEngine {
             while s.next(first)? {
                 first = false;
                 n += 1;
-                if !each(s.answer()?) {
+                let answer = if convert { s.answer()? } else { Subst::new() };
+                if !each(answer) {
                     break;
                 }
             }
@@ -102,7 +115,7 @@ impl NativeEngine {
             }
         }
         let mut found = false;
-        self.solve(view, query, &mut |_| {
+        self.solve_inner(view, query, false, &mut |_| {
             found = true;
             false
         })?;
