@@ -313,13 +313,14 @@ fn updates_delete_first_then_add() {
 }
 
 #[test]
-fn million_insert_delete_pairs_stay_flat() {
+fn insert_delete_pairs_stay_flat() {
     let mut fb = FactBase::new();
     for i in 0..100 {
         fb.insert(Term::compound("keep", vec![Term::Int(i)]));
     }
     let before = fb.allocated_entries();
-    for i in 0..1_000_000i64 {
+    // (The benchmark measures RSS over a million pairs; 200,000 keep this test quick.)
+    for i in 0..200_000i64 {
         let f = Term::compound("tmp", vec![Term::Int(i), Term::atom("x")]);
         assert!(fb.insert(f.clone()));
         assert!(fb.delete(&f));
@@ -333,6 +334,8 @@ fn kr_types_can_be_shared_and_sent_between_threads() {
     fn shared<T: Send + Sync>() {}
     fn sent<T: Send>() {}
     shared::<Knowledge>();
+    // Per-agent engine state is small (the solver's buffers are per thread).
+    assert!(std::mem::size_of::<NativeEngine>() < 1024);
     shared::<FactBase>();
     sent::<NativeEngine>();
     let kn = load("p(1). p(2).");

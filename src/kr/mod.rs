@@ -38,7 +38,13 @@
 //!   `error(type_error(evaluable, foo/0), _)`, `error(evaluation_error(zero_divisor), _)`.
 //!   [`KrError::to_term`] gives a printable term. No query can panic, hang (see [`Limits`]) or
 //!   overflow the Rust stack: the solver, unification, comparison, copying and arithmetic are
-//!   iterative.
+//!   iterative. The depth bound counts the length of the continuation (pending goals), so
+//!   deterministic tail recursion over a long list is fine while `p :- p, q.` or a
+//!   left-recursive rule stops with [`KrError::Depth`]; `p :- p.` runs in constant space and
+//!   stops at the inference budget. Cyclic terms (possible without the occurs check, e.g.
+//!   `X = f(X)`) give `error(representation_error(cyclic_term), _)` instead of endless loops,
+//!   and terms nested deeper than 10,000 cannot be written (`resource_error(print_depth)`),
+//!   since the term printer recurses.
 //!
 //! ```
 //! use goal::kr::{Engine, FactBase, Knowledge, NativeEngine, View};
