@@ -349,3 +349,15 @@ fn kr_types_can_be_shared_and_sent_between_threads() {
     assert_eq!(h.join().unwrap(), 2);
     assert_eq!(kn.predicates().len(), 1);
 }
+
+#[test]
+fn queries_with_protected_predicates_are_rejected() {
+    assert!(Knowledge::check_query(&read("on(X, Y), \\+ on(_, X)")).is_ok());
+    assert!(Knowledge::check_query(&read("setof(X, Y^p(X, Y), L)")).is_ok());
+    let Err(KrError::Load(errs)) = Knowledge::check_query(&read("p(X), (assert(q) ; retract(r))"))
+    else {
+        panic!("expected errors")
+    };
+    assert_eq!(errs.len(), 2);
+    assert!(Knowledge::check_query(&read("X^p(X)")).is_err());
+}

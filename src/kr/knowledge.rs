@@ -239,6 +239,26 @@ impl Knowledge {
         self.clause_count == 0
     }
 
+    /// Checks a query or condition for protected predicates (as loading does for clause
+    /// bodies); the error lists every problem found.
+    pub fn check_query(goal: &Term) -> Result<(), KrError> {
+        let mut problems = Vec::new();
+        check_body(goal, &mut problems);
+        if problems.is_empty() {
+            return Ok(());
+        }
+        Err(KrError::Load(
+            problems
+                .into_iter()
+                .map(|message| LoadError {
+                    clause: 0,
+                    predicate: None,
+                    message,
+                })
+                .collect(),
+        ))
+    }
+
     /// The predicates defined by knowledge clauses, in order of first definition.
     pub fn predicates(&self) -> Vec<(Sym, usize)> {
         self.preds

@@ -106,9 +106,8 @@ impl Code {
 
     /// Copies a heap term into this code (variables numbered through `vars`, by address).
     pub fn add_cell(&mut self, store: &Store, c: Cell, vars: &mut Vec<u32>) -> Cell {
-        match store.deref(c) {
-            c @ (Cell::Atom(_) | Cell::Int(_) | Cell::Flt(_)) => return c,
-            _ => {}
+        if let c @ (Cell::Atom(_) | Cell::Int(_) | Cell::Flt(_)) = store.deref(c) {
+            return c;
         }
         let mut root = UNSET;
         let mut work: Vec<(Option<usize>, Cell)> = vec![(None, c)];

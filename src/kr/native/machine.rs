@@ -153,7 +153,7 @@ impl<'a, 'm> Solver<'a, 'm> {
         m.reset();
         m.st.occurs_check = occurs_check;
         let mut vars = Vec::new();
-        let g = m.st.from_term(goal, &mut vars);
+        let g = m.st.put_term(goal, &mut vars);
         m.frames.push(Frame {
             goal: Goal::Call(g),
             next: NONE,
@@ -597,15 +597,15 @@ impl<'a, 'm> Solver<'a, 'm> {
             }
         }
         let mut nx = next;
-        let mut d = if next == NONE {
+        // Depth is the continuation length: the last body goal is one deeper than `next`.
+        let base = if next == NONE {
             0
         } else {
             m.frames[next as usize].depth
         };
         let _ = depth;
-        for (g, pred) in cl.body.iter().zip(&cl.preds).rev() {
+        for (d, (g, pred)) in (base + 1..).zip(cl.body.iter().zip(&cl.preds).rev()) {
             let c = cl.code.build(&mut m.st, *g, &mut m.slots);
-            d += 1;
             m.frames.push(Frame {
                 goal: Goal::Call(c),
                 next: nx,
@@ -765,7 +765,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                         Term::Atom(s) => Cell::Atom(*s),
                         Term::Int(i) => Cell::Int(*i),
                         Term::Float(f) => Cell::Flt(f.0),
-                        _ => self.m.st.from_term(t, &mut Vec::new()),
+                        _ => self.m.st.put_term(t, &mut Vec::new()),
                     };
                     self.m.st.bind(a, v);
                 }

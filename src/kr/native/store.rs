@@ -80,7 +80,7 @@ impl Store {
     #[inline]
     pub fn runaway(&self, steps: &mut usize, limit: usize, roots: &[Cell]) -> bool {
         *steps += 1;
-        if *steps <= limit || *steps % 4096 != 0 {
+        if *steps <= limit || !steps.is_multiple_of(4096) {
             return false;
         }
         let cyc = roots.iter().any(|r| self.is_cyclic(*r));
@@ -300,7 +300,7 @@ impl Store {
     }
 
     /// Copies a term onto the heap; variables are looked up in (and added to) `vars`.
-    pub fn from_term(&mut self, t: &Term, vars: &mut Vec<(Sym, Cell)>) -> Cell {
+    pub fn put_term(&mut self, t: &Term, vars: &mut Vec<(Sym, Cell)>) -> Cell {
         let root = self.heap.len() as u32;
         self.heap.push(Cell::Ref(root));
         let mut work: Vec<(u32, &Term)> = vec![(root, t)];
@@ -565,11 +565,8 @@ impl Store {
                 return;
             }
             match self.deref(c) {
-                Cell::Ref(a) => {
-                    if !out.contains(&a) {
-                        out.push(a)
-                    }
-                }
+                Cell::Ref(a) if !out.contains(&a) => out.push(a),
+                Cell::Ref(_) => {}
                 Cell::Ptr(p) => {
                     if let Cell::Fun(_, n) = self.heap[p as usize] {
                         stack.extend((0..n).rev().map(|i| self.arg(p, i)));

@@ -563,7 +563,7 @@ fn read_term(
             )
         })?;
     let mut vars = Vec::new();
-    let c = s.m.st.from_term(&t.term, &mut vars);
+    let c = s.m.st.put_term(&t.term, &mut vars);
     let named = vars
         .into_iter()
         .filter(|(v, _)| !v.name().starts_with('_'))
