@@ -361,3 +361,25 @@ fn queries_with_protected_predicates_are_rejected() {
     assert_eq!(errs.len(), 2);
     assert!(Knowledge::check_query(&read("X^p(X)")).is_err());
 }
+
+#[test]
+fn ground_fact_queries_count_every_source() {
+    let kn = load("rule(x) :- fact(x).");
+    let mut a = FactBase::new();
+    let mut b = FactBase::new();
+    a.insert(read("fact(x)"));
+    b.insert(read("fact(x)"));
+    let mut e = NativeEngine::new(0);
+    let bases = [&a, &b];
+    let v = View::beliefs(&kn, &bases);
+    assert_eq!(e.query(&v, &read("fact(x)")).unwrap().len(), 2);
+    assert_eq!(e.query(&v, &read("fact(y)")).unwrap().len(), 0);
+    assert_eq!(e.query(&v, &read("rule(x)")).unwrap().len(), 2);
+    assert!(e.holds(&v, &read("fact(x)")).unwrap());
+    assert_eq!(
+        e.query_first(&v, &read("fact(X)"))
+            .unwrap()
+            .map(|s| s.len()),
+        Some(1)
+    );
+}

@@ -103,16 +103,23 @@ impl NativeEngine {
         })
     }
 
+    /// For a ground query of a predicate that only facts define: how many times the fact is
+    /// present (the number of answers), without running the solver.
+    fn ground_fact_count(view: &View, query: &Term) -> Option<usize> {
+        let (name, arity) = query.functor()?;
+        if view.knowledge.table.contains_key(&(name, arity as u32)) || !query.is_ground() {
+            return None;
+        }
+        Some(
+            view.bases.iter().filter(|b| b.contains(query)).count()
+                + view.goal_facts.iter().filter(|f| *f == query).count(),
+        )
+    }
+
     /// True when `query` has at least one answer (stops after the first).
     fn first(&mut self, view: &View, query: &Term) -> KrResult<bool> {
-        // Fast path: a ground fact that no clause or built-in defines.
-        if query.is_ground() {
-            if let Some((name, arity)) = query.functor() {
-                if !view.knowledge.table.contains_key(&(name, arity as u32)) {
-                    return Ok(view.bases.iter().any(|b| b.contains(query))
-                        || view.goal_facts.iter().any(|f| f == query));
-                }
-            }
+        if let Some(n) = Self::ground_fact_count(view, query) {
+            return Ok(n > 0);
         }
         let mut found = false;
         self.solve_inner(view, query, false, &mut |_| {
@@ -131,6 +138,9 @@ impl Default for NativeEngine {
 
 impl Engine for NativeEngine {
     fn query(&mut self, view: &View, query: &Term) -> KrResult<Vec<Subst>> {
+        if let Some(n) = Self::ground_fact_count(view, query) {
+            return Ok(vec![Subst::new(); n]);
+        }
         let mut out = Vec::new();
         self.solve(view, query, &mut |s| {
             out.push(s);
