@@ -582,3 +582,40 @@ fn cyclic_terms_in_unification_and_comparison_stop() {
         );
     }
 }
+
+#[test]
+fn hostile_arguments_are_errors_or_bounded() {
+    assert_eq!(
+        one("sort(-1, @<, [f(a)], X)"),
+        "error: error(domain_error(not_less_than_zero,-1),sort/4)"
+    );
+    assert_eq!(
+        one("format(atom(A), \"~999999999999|x\", []), atom_length(A, N)"),
+        "A = '".to_string() + &" ".repeat(100_000) + "x', N = 100001"
+    );
+    assert_eq!(
+        one("length(L, 1000000000000)"),
+        "error: error(domain_error(list_length,1000000000000),length/2)"
+    );
+    assert_eq!(
+        one("functor(T, f, 100000000)"),
+        "error: error(resource_error(memory),functor/3)"
+    );
+    assert_eq!(
+        one("X is 2 ** 100"),
+        "error: error(evaluation_error(int_overflow),_)"
+    );
+    assert_eq!(
+        one("X is 1 << 64"),
+        "error: error(evaluation_error(int_overflow),_)"
+    );
+    assert_eq!(
+        one("X is random(0)"),
+        "error: error(evaluation_error(undefined),_)"
+    );
+    assert_eq!(
+        one("atom_length(A, B)"),
+        "error: error(instantiation_error,atom_length/2)"
+    );
+    assert_eq!(one("sub_atom(abc, B, L, A, S), fail"), "false");
+}

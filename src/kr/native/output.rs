@@ -11,6 +11,9 @@ use crate::term::print::format_float;
 use crate::term::{well_known as wk, Style, Sym, Term};
 use std::sync::Arc;
 
+/// Largest column or repeat count a format directive may use.
+const MAX_FORMAT_COUNT: i64 = 100_000;
+
 /// Deepest term the printer is asked to write (it recurses on nesting, except along list
 /// tails).
 const MAX_PRINT_DEPTH: usize = 10_000;
@@ -81,7 +84,7 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
         if i < chars.len() && chars[i] == '*' {
             i += 1;
             match s.m.st.deref(next_arg("*")?) {
-                Cell::Int(n) => num = Some(n),
+                Cell::Int(n) => num = Some(n.min(MAX_FORMAT_COUNT)),
                 _ => return Err(format_error("~* needs an integer argument")),
             }
         } else if i + 1 < chars.len() && chars[i] == '`' {
@@ -93,7 +96,13 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
                 i += 1;
             }
             if i > st {
-                num = chars[st..i].iter().collect::<String>().parse().ok();
+                // Column and repeat counts are capped so a format string cannot exhaust memory.
+                num = chars[st..i]
+                    .iter()
+                    .collect::<String>()
+                    .parse::<i64>()
+                    .ok()
+                    .map(|n| n.min(MAX_FORMAT_COUNT));
             }
         }
         let Some(&d) = chars.get(i) else {
