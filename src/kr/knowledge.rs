@@ -44,7 +44,7 @@ pub(crate) enum PredRef {
 }
 
 /// Compiled knowledge clauses plus the table resolving every callable name.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct Knowledge {
     pub(crate) preds: Vec<Pred>,
     pub(crate) table: FxHashMap<(Sym, u32), PredRef>,
@@ -224,9 +224,20 @@ impl Knowledge {
         Ok(Arc::new(k))
     }
 
-    /// Knowledge without clauses.
+    /// A knowledge base with no clauses and no names at all (the library starts from it).
+    pub(crate) fn blank() -> Knowledge {
+        Knowledge {
+            preds: Vec::new(),
+            table: FxHashMap::default(),
+            clause_count: 0,
+        }
+    }
+
+    /// Knowledge without clauses (the built-ins and the library only).
     pub fn empty() -> Arc<Knowledge> {
-        Knowledge::load(&[]).unwrap_or_default()
+        let mut k = Knowledge::blank();
+        k.table = builtins::library().table.clone();
+        Arc::new(k)
     }
 
     /// Number of clauses loaded.

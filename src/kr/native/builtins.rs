@@ -95,7 +95,7 @@ pub(crate) fn is_library(b: B) -> bool {
 pub(crate) fn library() -> &'static Knowledge {
     static LIB: OnceLock<Knowledge> = OnceLock::new();
     LIB.get_or_init(|| {
-        let mut k = Knowledge::default();
+        let mut k = Knowledge::blank();
         for (b, name, arities, _) in TABLE {
             for a in arities.iter() {
                 k.table
