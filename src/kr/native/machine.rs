@@ -189,15 +189,16 @@ impl<'a, 'm> Solver<'a, 'm> {
         let mut s = Subst::new();
         for (v, c) in &self.query_vars {
             let d = self.m.st.deref(*c);
-            if self.m.st.is_cyclic(d) {
-                return Err(cyclic());
-            }
             if let (Cell::Ref(a), Cell::Ref(b)) = (d, *c) {
                 if a == b {
                     continue;
                 }
             }
             let t = self.m.st.to_term(d, &mut names);
+            // `to_term` stops on a cyclic term and raises the flag.
+            if self.m.st.cyclic.get() {
+                return Err(cyclic());
+            }
             if t != Term::Var(*v) {
                 s.bind(*v, t);
             }
