@@ -11,7 +11,8 @@
 //!   `Arc` (per-agent state never copies it). Loading rejects protected predicates (`assert`,
 //!   `retract`, `:`, `catch`, directives, ... see goal-language.md §3.3), redefinitions of
 //!   built-ins, and clauses whose head is not callable, with a [`KrError::Load`] listing every
-//!   offending clause and naming the predicate.
+//!   offending clause and naming the predicate. [`Knowledge::check_query`] applies the same
+//!   check to a query or condition.
 //! * [`FactBase`]: an indexed set of ground facts (by predicate and by the first two
 //!   arguments; a compound argument is keyed by its functor). [`FactBase::insert`] and
 //!   [`FactBase::delete`] are O(1) expected, return whether anything changed, and free memory
@@ -25,7 +26,9 @@
 //!   beliefs). Predicates with neither clauses nor facts simply fail (GOAL semantics); calling
 //!   an unbound variable is an instantiation error.
 //! * [`Engine`]: the query interface, implemented by [`NativeEngine`] (the default; a
-//!   scryer-backed engine can implement the same trait). `query` returns every answer as a
+//!   scryer-backed engine can implement the same trait; [`Knowledge`] is engine-neutral input
+//!   compiled for the native engine, so such an engine would keep its own loaded program).
+//!   [`NativeEngine::solve`] streams answers to a callback instead of collecting them. `query` returns every answer as a
 //!   [`Subst`] over the query's variables, in Prolog solution order; `query_first` stops at the
 //!   first; `holds` is the cheap yes/no check for conditions such as `bel(on(a,b))`.
 //!   Variables left unbound by an answer are not in the substitution; variables bound to each
