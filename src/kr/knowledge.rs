@@ -49,6 +49,8 @@ pub struct Knowledge {
     pub(crate) preds: Vec<Pred>,
     pub(crate) table: FxHashMap<(Sym, u32), PredRef>,
     clause_count: usize,
+    /// The clauses as loaded (for engines that load source, such as a scryer engine).
+    source: Vec<Term>,
 }
 
 /// Names that GOAL programs may not use as predicates (goal-language.md §3.3).
@@ -206,11 +208,9 @@ impl Knowledge {
     /// predicates, directives and clauses whose head is not an atom or compound term.
     pub fn load(clauses: &[Term]) -> Result<Arc<Knowledge>, KrError> {
         let lib = builtins::library();
-        let mut k = Knowledge {
-            preds: Vec::new(),
-            table: lib.table.clone(),
-            clause_count: 0,
-        };
+        let mut k = Knowledge::blank();
+        k.table = lib.table.clone();
+        k.source = clauses.to_vec();
         let mut errors = Vec::new();
         for (i, t) in clauses.iter().enumerate() {
             if let Err(e) = k.add_checked(t, i) {
@@ -230,6 +230,7 @@ impl Knowledge {
             preds: Vec::new(),
             table: FxHashMap::default(),
             clause_count: 0,
+            source: Vec::new(),
         }
     }
 
@@ -238,6 +239,11 @@ impl Knowledge {
         let mut k = Knowledge::blank();
         k.table = builtins::library().table.clone();
         Arc::new(k)
+    }
+
+    /// The clauses as given to [`Knowledge::load`].
+    pub fn source(&self) -> &[Term] {
+        &self.source
     }
 
     /// Number of clauses loaded.

@@ -26,8 +26,8 @@
 //!   beliefs). Predicates with neither clauses nor facts simply fail (GOAL semantics); calling
 //!   an unbound variable is an instantiation error.
 //! * [`Engine`]: the query interface, implemented by [`NativeEngine`] (the default; a
-//!   scryer-backed engine can implement the same trait; [`Knowledge`] is engine-neutral input
-//!   compiled for the native engine, so such an engine would keep its own loaded program).
+//!   scryer-backed engine can implement the same trait; [`Knowledge::source`] keeps the clauses
+//!   as loaded for such an engine).
 //!   [`NativeEngine::solve`] streams answers to a callback instead of collecting them. `query` returns every answer as a
 //!   [`Subst`] over the query's variables, in Prolog solution order; `query_first` stops at the
 //!   first; `holds` is the cheap yes/no check for conditions such as `bel(on(a,b))`.
