@@ -71,7 +71,7 @@
 //! `native/` holds a Prolog engine written for GOAL's needs: terms are copied onto a heap of
 //! cells (`store.rs`) with a trail; knowledge clauses are compiled to flat cells with numbered
 //! variable slots (`code.rs`), so a head is unified directly against the goal and only the body
-//! is built; `machine.rs` runs SLD resolution with an explicit goal-frame arena and choicepoint
+//! is built; `machine.rs` (with `control.rs` and `facts.rs`) runs SLD resolution with an explicit goal-frame arena and choicepoint
 //! stack (cut barriers per clause, opaque `call/N`, `\+`, `->`, `*->`, `findall/3` collecting
 //! off-heap). Clauses are indexed on the first argument when a predicate has four or more.
 //! Built-ins are native Rust (`builtins.rs`, `arith.rs`, `text.rs`, `lists.rs`, `output.rs`)
