@@ -1,4 +1,4 @@
-//! Control constructs (`,` `;` `->` `*->` `\\+` `call/N` `findall/3,4`), the nondeterministic
+//! Control constructs (`,` `;` `->` `*->` `\+` `call/N` `findall/3,4`), the nondeterministic
 //! built-ins kept in the solver (`between/3`, `member/2`, `repeat/0`) and the dispatch to the
 //! deterministic built-ins.
 
