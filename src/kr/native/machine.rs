@@ -1,0 +1,621 @@
+//! The solver: iterative SLD resolution over a goal-frame arena and a choicepoint stack, with
+//! cut barriers, negation as failure, if-then-else, soft cut and all-solutions collection.
+//! Nothing here recurses with the proof depth or the term depth.
+
+use super::code::{Code, Key, UNSET};
+use super::store::{Cell, Store, VarNames};
+use crate::kr::error::{KrError, KrResult, Limits};
+use crate::kr::factbase::{FactBase, Scan};
+use crate::kr::knowledge::{Knowledge, Pred, PredRef};
+use crate::term::{Subst, Sym, Term};
+use rand_chacha::ChaCha8Rng;
+
+pub(crate) const NONE: u32 = u32::MAX;
+
+/// The error for a cyclic term where a finite one is needed (answers, output).
+pub(crate) fn cyclic() -> KrError {
+    KrError::iso(
+        Term::compound("representation_error", vec![Term::atom("cyclic_term")]),
+        None,
+    )
+}
+
+/// A goal waiting to run, with its continuation and cut barrier.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Frame {
+    pub goal: Goal,
+    pub next: u32,
+    pub cut: u32,
+    pub depth: u32,
+    /// What the goal's predicate resolves to, when known at compile time (saves a lookup).
+    pub pred: Option<PredRef>,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Goal {
+    Call(Cell),
+    /// Remove all choicepoints above the given height (end of an if-then-else condition).
+    CutTo(u32),
+    /// Disable the else branch of a soft cut.
+    SoftCut(u32),
+    /// The goal under `\+` succeeded: remove its choicepoints and fail.
+    NafFail(u32),
+    /// Record a `findall/3` answer and fail.
+    Collect {
+        bag: u32,
+        tmpl: Cell,
+    },
+}
+
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Alt {
+    Clauses {
+        goal: Cell,
+        pred: PredRef,
+        key: Option<Key>,
+        pos: u32,
+    },
+    Facts {
+        goal: Cell,
+        stage: u32,
+        scan: Scan,
+    },
+    Goal(Cell),
+    NafSucceed,
+    FindallEnd {
+        bag: u32,
+        result: Cell,
+        tail: Cell,
+    },
+    Between {
+        x: Cell,
+        cur: i64,
+        hi: i64,
+    },
+    Member {
+        x: Cell,
+        list: Cell,
+    },
+    Repeat,
+    Dead,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Choice {
+    pub alt: Alt,
+    heap: u32,
+    trail: u32,
+    frames: u32,
+    strs: u32,
+    next: u32,
+    cut: u32,
+    depth: u32,
+}
+
+/// Answers collected by `findall/3`, kept off the heap so backtracking does not erase them.
+#[derive(Default)]
+pub(crate) struct Bag {
+    pub code: Code,
+    pub items: Vec<(Cell, u32)>,
+}
+
+/// Reusable buffers of the solver (one per thread).
+#[derive(Default)]
+pub(crate) struct Machine {
+    pub st: Store,
+    pub frames: Vec<Frame>,
+    pub cps: Vec<Choice>,
+    pub bags: Vec<Bag>,
+    pub slots: Vec<Cell>,
+}
+
+impl Machine {
+    fn reset(&mut self) {
+        self.st.reset();
+        self.frames.clear();
+        self.cps.clear();
+        self.bags.clear();
+        // Give back memory after an unusually big query so idle threads stay small.
+        if self.st.heap.capacity() > 1 << 20 {
+            self.st.heap = Vec::new();
+            self.st.trail = Vec::new();
+            self.frames = Vec::new();
+            self.cps = Vec::new();
+            self.st.strs = Vec::new();
+        }
+    }
+}
+
+/// Everything a query reads: knowledge, fact bases, goal facts; plus the agent's RNG and output.
+pub(crate) struct Ctx<'a> {
+    pub kn: &'a Knowledge,
+    pub lib: &'static Knowledge,
+    pub bases: &'a [&'a FactBase],
+    pub goal_facts: &'a [Term],
+    pub limits: Limits,
+    pub rng: &'a mut ChaCha8Rng,
+    pub out: &'a mut String,
+}
+
+/// One running query.
+pub(crate) struct Solver<'a, 'm> {
+    pub m: &'m mut Machine,
+    pub cx: Ctx<'a>,
+    pub cont: u32,
+    pub inferences: u64,
+    pub query_vars: Vec<(Sym, Cell)>,
+}
+
+impl<'a, 'm> Solver<'a, 'm> {
+    /// Prepares `goal` for solving.
+    pub fn new(m: &'m mut Machine, cx: Ctx<'a>, goal: &Term, occurs_check: bool) -> Self {
+        m.reset();
+        m.st.occurs_check = occurs_check;
+        let mut vars = Vec::new();
+        let g = m.st.put_term(goal, &mut vars);
+        m.frames.push(Frame {
+            goal: Goal::Call(g),
+            next: NONE,
+            cut: 0,
+            depth: 0,
+            pred: None,
+        });
+        Solver {
+            m,
+            cx,
+            cont: 0,
+            inferences: 0,
+            query_vars: vars,
+        }
+    }
+
+    /// The next answer (`Ok(false)` when there are no more).
+    pub fn next(&mut self, first: bool) -> KrResult<bool> {
+        let found = if !first && !self.backtrack()? {
+            false
+        } else {
+            self.run()?
+        };
+        if self.m.st.cyclic.get() {
+            return Err(cyclic());
+        }
+        Ok(found)
+    }
+
+    /// The current answer as a substitution over the query's variables.
+    pub fn answer(&self) -> KrResult<Subst> {
+        let mut names = VarNames::new(&self.query_vars);
+        let mut s = Subst::new();
+        for (v, c) in &self.query_vars {
+            let d = self.m.st.deref(*c);
+            if let (Cell::Ref(a), Cell::Ref(b)) = (d, *c) {
+                if a == b {
+                    continue;
+                }
+            }
+            let t = self.m.st.to_term(d, &mut names);
+            // `to_term` stops on a cyclic term and raises the flag.
+            if self.m.st.cyclic.get() {
+                return Err(cyclic());
+            }
+            if t != Term::Var(*v) {
+                s.bind(*v, t);
+            }
+        }
+        Ok(s)
+    }
+
+    // ---- helpers used by built-ins ----
+
+    /// Argument `i` of the goal whose header is at `p`.
+    #[inline]
+    pub fn a(&self, p: u32, i: u32) -> Cell {
+        self.m.st.heap[(p + 1 + i) as usize]
+    }
+
+    /// Dereferenced argument.
+    #[inline]
+    pub fn ad(&self, p: u32, i: u32) -> Cell {
+        self.m.st.deref(self.a(p, i))
+    }
+
+    pub fn unify(&mut self, a: Cell, b: Cell) -> bool {
+        self.m.st.unify(a, b)
+    }
+
+    /// The depth of a frame: the length of its continuation (so tail calls do not deepen).
+    #[inline]
+    pub(crate) fn depth_of(&self, next: u32) -> u32 {
+        if next == NONE {
+            0
+        } else {
+            self.m.frames[next as usize].depth
+        }
+    }
+
+    pub(crate) fn push_frame(&mut self, goal: Goal, next: u32, cut: u32, _depth: u32) -> u32 {
+        let depth = self.depth_of(next) + 1;
+        self.m.frames.push(Frame {
+            goal,
+            next,
+            cut,
+            depth,
+            pred: None,
+        });
+        self.m.frames.len() as u32 - 1
+    }
+
+    pub(crate) fn push_choice(&mut self, alt: Alt, next: u32, cut: u32, depth: u32) {
+        let st = &self.m.st;
+        self.m.cps.push(Choice {
+            alt,
+            heap: st.heap.len() as u32,
+            trail: st.trail.len() as u32,
+            frames: self.m.frames.len() as u32,
+            strs: st.strs.len() as u32,
+            next,
+            cut,
+            depth,
+        });
+    }
+
+    pub(crate) fn restore(&mut self, ch: &Choice) {
+        self.m.st.undo(ch.trail as usize);
+        self.m.st.heap.truncate(ch.heap as usize);
+        self.m.st.strs.truncate(ch.strs as usize);
+        self.m.frames.truncate(ch.frames as usize);
+    }
+
+    pub(crate) fn pred(&self, r: PredRef) -> &'a Pred {
+        match r {
+            PredRef::User(i) => &self.cx.kn.preds[i as usize],
+            _ => {
+                let PredRef::Lib(i) = r else { unreachable!() };
+                &self.cx.lib.preds[i as usize]
+            }
+        }
+    }
+
+    // ---- the main loop ----
+
+    pub(crate) fn run(&mut self) -> KrResult<bool> {
+        loop {
+            if self.m.st.cyclic.get() {
+                return Err(cyclic());
+            }
+            if self.cont == NONE {
+                return Ok(true);
+            }
+            let f = self.m.frames[self.cont as usize];
+            // The newest frame, not protected by a choicepoint, is garbage once read: reuse
+            // its slot (this keeps deterministic tail recursion in constant frame space).
+            if self.cont as usize + 1 == self.m.frames.len()
+                && self.m.cps.last().is_none_or(|c| c.frames <= self.cont)
+            {
+                self.m.frames.pop();
+            }
+            let ok = match f.goal {
+                Goal::Call(g) => self.call(g, f.next, f.cut, f.depth, f.pred)?,
+                Goal::CutTo(b) => {
+                    self.m.cps.truncate(b as usize);
+                    self.cont = f.next;
+                    true
+                }
+                Goal::SoftCut(b) => {
+                    if let Some(c) = self.m.cps.get_mut(b as usize) {
+                        c.alt = Alt::Dead;
+                    }
+                    self.cont = f.next;
+                    true
+                }
+                Goal::NafFail(b) => {
+                    self.m.cps.truncate(b as usize);
+                    false
+                }
+                Goal::Collect { bag, tmpl } => {
+                    let st = &self.m.st;
+                    let b = &mut self.m.bags[bag as usize];
+                    let mut vars = Vec::new();
+                    let root = b.code.add_cell(st, tmpl, &mut vars);
+                    b.items.push((root, vars.len() as u32));
+                    false
+                }
+            };
+            if !ok && !self.backtrack()? {
+                return Ok(false);
+            }
+        }
+    }
+
+    /// Resumes the newest choicepoint; false when none is left.
+    pub(crate) fn backtrack(&mut self) -> KrResult<bool> {
+        loop {
+            if self.m.st.cyclic.get() {
+                return Err(cyclic());
+            }
+            let Some(ch) = self.m.cps.last().copied() else {
+                return Ok(false);
+            };
+            self.restore(&ch);
+            let b = self.m.cps.len() as u32 - 1;
+            match ch.alt {
+                Alt::Dead => {
+                    self.m.cps.pop();
+                }
+                Alt::Goal(g) => {
+                    self.m.cps.pop();
+                    self.cont = self.push_frame(Goal::Call(g), ch.next, ch.cut, ch.depth);
+                    return Ok(true);
+                }
+                Alt::NafSucceed => {
+                    self.m.cps.pop();
+                    self.cont = ch.next;
+                    return Ok(true);
+                }
+                Alt::Repeat => {
+                    self.cont = ch.next;
+                    return Ok(true);
+                }
+                Alt::FindallEnd { bag, result, tail } => {
+                    self.m.cps.pop();
+                    let list = self.bag_list(bag, tail);
+                    if self.unify(result, list) {
+                        self.cont = ch.next;
+                        return Ok(true);
+                    }
+                }
+                Alt::Between { x, cur, hi } => {
+                    if cur >= hi {
+                        self.m.cps.pop();
+                    } else if let Some(c) = self.m.cps.last_mut() {
+                        c.alt = Alt::Between {
+                            x,
+                            cur: cur + 1,
+                            hi,
+                        };
+                    }
+                    if self.unify(x, Cell::Int(cur)) {
+                        self.cont = ch.next;
+                        return Ok(true);
+                    }
+                }
+                Alt::Member { x, list } => {
+                    if self.member_step(x, list) {
+                        self.cont = ch.next;
+                        return Ok(true);
+                    }
+                }
+                Alt::Clauses {
+                    goal,
+                    pred,
+                    key,
+                    pos,
+                } => {
+                    if self.try_clauses(goal, pred, key, pos, b, true, ch.next, ch.depth)? {
+                        return Ok(true);
+                    }
+                }
+                Alt::Facts { goal, stage, scan } => {
+                    if self.try_facts(goal, stage, scan, b, true, ch.next)? {
+                        return Ok(true);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Takes bag `bag` (and every newer one) and builds its answers as a list ending in `tail`.
+    pub(crate) fn bag_list(&mut self, bag: u32, tail: Cell) -> Cell {
+        let b = self.m.bags.drain(bag as usize..).next().unwrap_or_default();
+        let mut cells = Vec::with_capacity(b.items.len());
+        for (root, n) in &b.items {
+            self.m.slots.clear();
+            self.m.slots.resize(*n as usize, UNSET);
+            let c = b.code.build(&mut self.m.st, *root, &mut self.m.slots);
+            cells.push(c);
+        }
+        self.m.st.new_list(&cells, tail)
+    }
+
+    /// One step of `member/2`: unify with the head, leave the tail as the alternative.
+    /// The choicepoint for this call must be on top.
+    pub(crate) fn member_step(&mut self, x: Cell, list: Cell) -> bool {
+        match self.m.st.cons(list) {
+            Some((h, t)) => {
+                if self.m.st.cons(t).is_some() {
+                    if let Some(c) = self.m.cps.last_mut() {
+                        c.alt = Alt::Member { x, list: t };
+                    }
+                } else {
+                    self.m.cps.pop();
+                }
+                self.unify(x, h)
+            }
+            None => {
+                self.m.cps.pop();
+                false
+            }
+        }
+    }
+
+    /// Calls goal `g`.
+    pub(crate) fn call(
+        &mut self,
+        g: Cell,
+        next: u32,
+        cut: u32,
+        depth: u32,
+        pred: Option<PredRef>,
+    ) -> KrResult<bool> {
+        let g = self.m.st.deref(g);
+        let (name, arity, p) = match g {
+            Cell::Atom(s) => (s, 0, 0),
+            Cell::Ptr(p) => match self.m.st.heap[p as usize] {
+                Cell::Fun(s, n) => (s, n, p),
+                _ => return Ok(false),
+            },
+            Cell::Ref(_) => {
+                return Err(KrError::iso(Term::atom("instantiation_error"), None));
+            }
+            other => {
+                let t = self.m.st.to_term(other, &mut VarNames::new(&[]));
+                return Err(KrError::iso(
+                    Term::compound("type_error", vec![Term::atom("callable"), t]),
+                    None,
+                ));
+            }
+        };
+        self.inferences += 1;
+        if self.inferences > self.cx.limits.max_inferences {
+            return Err(KrError::Budget {
+                predicate: format!("{}/{}", Term::Atom(name), arity),
+                limit: self.cx.limits.max_inferences,
+            });
+        }
+        let pred = match pred {
+            Some(r) => Some(r),
+            None => self.cx.kn.table.get(&(name, arity)).copied(),
+        };
+        match pred {
+            Some(PredRef::Builtin(b)) => self.builtin(b, g, p, next, cut, depth),
+            Some(r) => {
+                let key = if arity > 0 {
+                    Key::of_cell(&self.m.st, self.a(p, 0))
+                } else {
+                    None
+                };
+                let b = self.m.cps.len() as u32;
+                if depth > self.cx.limits.max_depth {
+                    return Err(KrError::Depth {
+                        predicate: format!("{}/{}", Term::Atom(name), arity),
+                        limit: self.cx.limits.max_depth,
+                    });
+                }
+                self.try_clauses(g, r, key, 0, b, false, next, depth)
+            }
+            None => {
+                let b = self.m.cps.len() as u32;
+                let scan = self.start_scan(0, g, name, arity, p);
+                self.try_facts(g, 0, scan, b, false, next)
+            }
+        }
+    }
+
+    /// The first clause index at or after `i` whose first-argument key can match `key`.
+    #[inline]
+    pub(crate) fn skip(pred: &Pred, list: &[u32], mut i: usize, key: Option<Key>) -> usize {
+        if let Some(k) = key {
+            while i < list.len() {
+                match pred.clauses[list[i] as usize].key {
+                    Some(ck) if ck != k => i += 1,
+                    _ => break,
+                }
+            }
+        }
+        i
+    }
+
+    /// Tries the clauses of `r` from candidate position `pos`; the choicepoint for this goal is
+    /// (or will be) at index `b`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn try_clauses(
+        &mut self,
+        goal: Cell,
+        r: PredRef,
+        key: Option<Key>,
+        pos: u32,
+        b: u32,
+        mut has_choice: bool,
+        next: u32,
+        depth: u32,
+    ) -> KrResult<bool> {
+        let pred = self.pred(r);
+        let list = pred.candidates(key);
+        let mut i = Self::skip(pred, list, pos as usize, key);
+        loop {
+            if i >= list.len() {
+                if has_choice {
+                    self.m.cps.truncate(b as usize);
+                }
+                return Ok(false);
+            }
+            let j = Self::skip(pred, list, i + 1, key);
+            if j < list.len() {
+                let alt = Alt::Clauses {
+                    goal,
+                    pred: r,
+                    key,
+                    pos: j as u32,
+                };
+                if has_choice {
+                    self.m.cps[b as usize].alt = alt;
+                } else {
+                    self.push_choice(alt, next, 0, depth);
+                    has_choice = true;
+                }
+            } else if has_choice {
+                self.m.cps.truncate(b as usize);
+                has_choice = false;
+            }
+            let (hm, tm, fm, sm) = (
+                self.m.st.heap.len(),
+                self.m.st.trail.len(),
+                self.m.frames.len(),
+                self.m.st.strs.len(),
+            );
+            if self.try_clause(pred, list[i], goal, next, depth, b) {
+                return Ok(true);
+            }
+            self.m.st.undo(tm);
+            self.m.st.heap.truncate(hm);
+            self.m.st.strs.truncate(sm);
+            self.m.frames.truncate(fm);
+            i = j;
+        }
+    }
+
+    pub(crate) fn try_clause(
+        &mut self,
+        pred: &'a Pred,
+        ci: u32,
+        goal: Cell,
+        next: u32,
+        depth: u32,
+        cut: u32,
+    ) -> bool {
+        let cl = &pred.clauses[ci as usize];
+        let m = &mut *self.m;
+        m.slots.clear();
+        m.slots.resize(cl.nslots as usize, UNSET);
+        if let (Cell::Ptr(off), Cell::Ptr(gp)) = (cl.head, goal) {
+            for i in 0..pred.arity {
+                let c = cl.code.cells[(off + 1 + i) as usize];
+                let h = m.st.heap[(gp + 1 + i) as usize];
+                if !cl.code.unify_arg(&mut m.st, c, h, &mut m.slots) {
+                    return false;
+                }
+            }
+        }
+        let mut nx = next;
+        // Depth is the continuation length: the last body goal is one deeper than `next`.
+        let base = if next == NONE {
+            0
+        } else {
+            m.frames[next as usize].depth
+        };
+        let _ = depth;
+        for (d, (g, pred)) in (base + 1..).zip(cl.body.iter().zip(&cl.preds).rev()) {
+            let c = cl.code.build(&mut m.st, *g, &mut m.slots);
+            m.frames.push(Frame {
+                goal: Goal::Call(c),
+                next: nx,
+                cut,
+                depth: d,
+                pred: *pred,
+            });
+            nx = m.frames.len() as u32 - 1;
+        }
+        self.cont = nx;
+        true
+    }
+}
