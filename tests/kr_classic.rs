@@ -383,3 +383,38 @@ fn ground_fact_queries_count_every_source() {
         Some(1)
     );
 }
+
+/// GOAL's goal module holds the knowledge and the goal's facts: a goal fact counts even when
+/// knowledge also has clauses for its predicate (`goals { done. }` with `done :- ...`).
+#[test]
+fn goal_facts_join_knowledge_clauses_of_the_same_predicate() {
+    let mut r = goal::syntax::prolog::Reader::new("t");
+    let (clauses, errs) = r.clauses("done :- seqlen(N), idx(N). p(1). p(2) :- true.", 0);
+    assert!(errs.is_empty());
+    let kn = goal::kr::Knowledge::load(&clauses.into_iter().map(|c| c.term).collect::<Vec<_>>())
+        .unwrap();
+    let mut engine = goal::kr::NativeEngine::new(1);
+    let goal_facts = vec![
+        r.term("done", 0).unwrap().term,
+        r.term("p(3)", 0).unwrap().term,
+    ];
+    let view = goal::kr::View::goal(&kn, &goal_facts);
+    use goal::kr::Engine;
+    assert!(engine
+        .holds(&view, &r.term("done", 0).unwrap().term)
+        .unwrap());
+    let answers = engine
+        .query(&view, &r.term("p(X)", 0).unwrap().term)
+        .unwrap();
+    let xs: Vec<String> = answers
+        .iter()
+        .map(|a| a.iter().next().unwrap().1.to_string())
+        .collect();
+    assert_eq!(xs, ["1", "2", "3"]);
+    assert!(!engine
+        .holds(
+            &goal::kr::View::goal(&kn, &[]),
+            &r.term("done", 0).unwrap().term
+        )
+        .unwrap());
+}

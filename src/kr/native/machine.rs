@@ -484,13 +484,36 @@ impl<'a, 'm> Solver<'a, 'm> {
                 } else {
                     None
                 };
-                let b = self.m.cps.len() as u32;
                 if depth > self.cx.limits.max_depth {
                     return Err(KrError::Depth {
                         predicate: format!("{}/{}", Term::Atom(name), arity),
                         limit: self.cx.limits.max_depth,
                     });
                 }
+                // A goal's facts join the knowledge clauses of their predicate (GOAL's goal
+                // module holds both): `goals { done. }` with `done :- ...` in knowledge. The
+                // facts are tried after the clauses, as facts asserted after them would be.
+                let arity_usize = arity as usize;
+                if self
+                    .cx
+                    .goal_facts
+                    .iter()
+                    .any(|f| f.functor() == Some((name, arity_usize)))
+                {
+                    let stage = self.cx.bases.len() as u32;
+                    let scan = self.start_scan(stage, g, name, arity, p);
+                    self.push_choice(
+                        Alt::Facts {
+                            goal: g,
+                            stage,
+                            scan,
+                        },
+                        next,
+                        0,
+                        depth,
+                    );
+                }
+                let b = self.m.cps.len() as u32;
                 self.try_clauses(g, r, key, 0, b, false, next, depth)
             }
             None => {
