@@ -1,0 +1,114 @@
+//! Parser errors as diagnostics naming what was found and what was expected.
+
+use crate::diag::Diagnostic;
+use crate::syntax::lexer::Tok;
+use lalrpop_util::ParseError;
+
+/// Turns a lalrpop error into a diagnostic (`E0014` unexpected token, `E0015` unexpected end).
+pub fn syntax_error(e: ParseError<usize, Tok, Diagnostic>, src: &str, file: &str) -> Diagnostic {
+    match e {
+        ParseError::User { error } => error,
+        ParseError::InvalidToken { location } => {
+            Diagnostic::error("E0014", "invalid token", file, location..location + 1)
+        }
+        ParseError::UnrecognizedEof { location, expected } => Diagnostic::error(
+            "E0015",
+            format!(
+                "unexpected end of file, expected {}",
+                expected_list(&expected)
+            ),
+            file,
+            location..location,
+        )
+        .with_hint("a module, section or rule is not finished: check for a missing `}` or `.`"),
+        ParseError::UnrecognizedToken {
+            token: (l, tok, r),
+            expected,
+        } => {
+            let d = Diagnostic::error(
+                "E0014",
+                format!(
+                    "unexpected {}, expected {}",
+                    found(src, l, r, tok),
+                    expected_list(&expected)
+                ),
+                file,
+                l..r,
+            );
+            match hint(tok, &expected) {
+                Some(h) => d.with_hint(h),
+                None => d,
+            }
+        }
+        ParseError::ExtraToken { token: (l, tok, r) } => Diagnostic::error(
+            "E0014",
+            format!("unexpected {}", found(src, l, r, tok)),
+            file,
+            l..r,
+        ),
+    }
+}
+
+fn found(src: &str, l: usize, r: usize, tok: Tok) -> String {
+    let text = src.get(l..r).unwrap_or("?");
+    match tok {
+        Tok::KrBraces | Tok::KrParens | Tok::SelParens if text.len() > 30 => {
+            format!("{} starting `{}`", tok.describe(), short(text))
+        }
+        _ => format!("`{}`", short(text)),
+    }
+}
+
+fn short(text: &str) -> String {
+    let first = text.lines().next().unwrap_or("");
+    if first.chars().count() > 30 || first.len() < text.len() {
+        format!("{}...", first.chars().take(30).collect::<String>())
+    } else {
+        first.to_string()
+    }
+}
+
+fn hint(tok: Tok, expected: &[String]) -> Option<String> {
+    let has = |s: &str| expected.iter().any(|e| e.trim_matches('"') == s);
+    if has(".") && has("+") {
+        return Some("end the rule with `.` (or join actions with `+`)".into());
+    }
+    if tok == Tok::LBrace && has("then") {
+        return Some(
+            "a condition is followed by `then` (for `if`) or `do` (for `forall`/`listall`)".into(),
+        );
+    }
+    if tok == Tok::SelParens {
+        return Some("a `( ... )` that is not a selector `( ... ).` is out of place here".into());
+    }
+    None
+}
+
+/// `one of `a`, `b`` from lalrpop's expected-token names.
+pub fn expected_list(expected: &[String]) -> String {
+    let mut names: Vec<String> = expected
+        .iter()
+        .map(|e| {
+            let e = e.trim_matches('"');
+            match e {
+                "Ident" => "a name".to_string(),
+                "Str" => "a string".to_string(),
+                "Int" => "an integer".to_string(),
+                "Float" => "a number".to_string(),
+                "KrBraces" => "`{ ... }`".to_string(),
+                "KrParens" => "`( ... )`".to_string(),
+                "SelParens" => "a selector `( ... ).`".to_string(),
+                "SelName" => "an agent name".to_string(),
+                "ListallVar" => "a variable".to_string(),
+                other => format!("`{}`", other.replace("\\\"", "\"")),
+            }
+        })
+        .collect();
+    names.dedup();
+    match names.len() {
+        0 => "something else".to_string(),
+        1 => names[0].clone(),
+        n if n > 8 => format!("one of {}, ...", names[..8].join(", ")),
+        _ => format!("one of {}", names.join(", ")),
+    }
+}

@@ -1,0 +1,127 @@
+//! Checks of a parsed `.test2g` file: its MAS file exists and parses, the tested agents are
+//! launched by it, names are not repeated, and every agent has the same number of named tests.
+
+use super::ast::MasTest;
+use crate::diag::Diagnostic;
+use crate::syntax::mas2g;
+use std::path::Path;
+
+/// Checks `test`, whose MAS path is relative to `base_dir` (the test file's directory).
+pub fn check_files(test: &MasTest, base_dir: &Path) -> Vec<Diagnostic> {
+    let file = test.file.as_str();
+    let mut diags = Vec::new();
+    let mut seen_agents: Vec<&str> = Vec::new();
+    for a in &test.agents {
+        for name in &a.agents {
+            let n = name.name.name();
+            if seen_agents.contains(&n) {
+                diags.push(
+                    Diagnostic::warning(
+                        "W0302",
+                        format!("agent `{n}` is tested in more than one block"),
+                        file,
+                        name.span.clone(),
+                    )
+                    .with_hint("put all tests of an agent in one block"),
+                );
+            } else {
+                seen_agents.push(n);
+            }
+        }
+        let mut seen_tests: Vec<&str> = Vec::new();
+        for t in &a.tests {
+            let n = t.name.name.name();
+            if seen_tests.contains(&n) {
+                diags.push(
+                    Diagnostic::warning(
+                        "W0301",
+                        format!("duplicate test name `{n}`"),
+                        file,
+                        t.name.span.clone(),
+                    )
+                    .with_hint("give every test of an agent a different name"),
+                );
+            } else {
+                seen_tests.push(n);
+            }
+        }
+    }
+    if let Some(first) = test.agents.first() {
+        for a in &test.agents[1..] {
+            if a.tests.len() != first.tests.len() {
+                let span = a.agents.first().map_or(a.span.clone(), |i| i.span.clone());
+                diags.push(
+                    Diagnostic::error(
+                        "E0307",
+                        format!(
+                            "all agents must have the same number of named tests: this block has {}, the first has {}",
+                            a.tests.len(),
+                            first.tests.len()
+                        ),
+                        file,
+                        span,
+                    )
+                    .with_hint("add or remove named tests so every agent block has as many"),
+                );
+            }
+        }
+    }
+    let path = &test.mas.value;
+    let full = base_dir.join(path);
+    if !path.ends_with(".mas2g") {
+        diags.push(
+            Diagnostic::error(
+                "E0305",
+                format!("`{path}` is not a `.mas2g` file"),
+                file,
+                test.mas.span.clone(),
+            )
+            .with_hint("`mas = \"...\"` names the MAS file that the test launches"),
+        );
+        return diags;
+    }
+    let source = match std::fs::read(&full) {
+        Ok(bytes) if full.is_file() => String::from_utf8_lossy(&bytes).into_owned(),
+        _ => {
+            diags.push(
+                Diagnostic::error(
+                    "E0305",
+                    format!("MAS file `{path}` not found"),
+                    file,
+                    test.mas.span.clone(),
+                )
+                .with_hint("the path is relative to the directory of the test file"),
+            );
+            return diags;
+        }
+    };
+    let (mas, mas_diags) = mas2g::parse(&source, &full.to_string_lossy());
+    if mas_diags.iter().any(Diagnostic::is_error) {
+        diags.push(
+            Diagnostic::error(
+                "E0308",
+                format!("MAS file `{path}` has errors"),
+                file,
+                test.mas.span.clone(),
+            )
+            .with_hint("run `goal check` on the MAS file to see them"),
+        );
+        return diags;
+    }
+    for a in &test.agents {
+        for name in &a.agents {
+            if !mas.may_launch(name.name.name()) {
+                diags.push(
+                    Diagnostic::error(
+                        "E0306",
+                        format!("agent `{}` is not launched by `{path}`", name.name.name()),
+                        file,
+                        name.span.clone(),
+                    )
+                    .with_hint("test blocks are named after the agents that the MAS file launches"),
+                );
+            }
+        }
+    }
+    diags
+}

@@ -1,0 +1,105 @@
+//! `.mas2g` parsing and checking: correct fixtures (AST snapshots) and one negative fixture per
+//! diagnostic code (rendered diagnostics snapshotted, code and line:column asserted).
+
+use goal::diag::Diagnostic;
+use goal::syntax::mas2g;
+use std::path::Path;
+
+#[path = "negative_support/mod.rs"]
+mod common;
+
+fn parse_and_check(rel: &str) -> (String, mas2g::MasFile, Vec<Diagnostic>) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(rel);
+    let source = std::fs::read_to_string(&path).expect("fixture readable");
+    let (mas, mut diags) = mas2g::parse(&source, rel);
+    let base = path.parent().expect("fixture has a directory");
+    diags.extend(mas2g::check_files(&mas, base));
+    (source, mas, diags)
+}
+
+#[test]
+fn correct_fixtures_parse_without_diagnostics() {
+    for name in ["bw4t", "every_construct"] {
+        let rel = format!("tests/fixtures/mas2g/{name}.mas2g");
+        let (source, mas, diags) = parse_and_check(&rel);
+        let rendered: Vec<String> = diags.iter().map(|d| d.render(&source)).collect();
+        assert!(diags.is_empty(), "{rel}: {}", rendered.join("\n"));
+        insta::assert_snapshot!(format!("mas2g_{name}"), mas.dump());
+    }
+}
+
+#[test]
+fn every_construct_has_the_expected_shape() {
+    let (_, mas, _) = parse_and_check("tests/fixtures/mas2g/every_construct.mas2g");
+    assert_eq!(mas.agent_files.len(), 2);
+    assert_eq!(mas.agent_files[1].path.value, "agents/coordinator.goal");
+    assert_eq!(mas.agent_files[1].reference_name(), "coordinator");
+    assert_eq!(mas.launch_rules.len(), 5);
+    assert_eq!(mas.launch_rules[1].instructions[0].count(), 3);
+    assert!(mas.launch_rules[2].condition.is_some());
+    assert!(mas.may_launch("helper2"));
+    assert!(mas.may_launch("boss"));
+    let env = mas
+        .environment
+        .as_ref()
+        .and_then(|e| e.env.as_ref())
+        .map(|e| e.value.clone());
+    assert_eq!(env.as_deref(), Some("bw4t"));
+}
+
+#[test]
+fn launched_names_follow_the_counting_scheme() {
+    let src = "agentfiles { \"a.goal\". } launchpolicy { launch bob:a[2], a. }";
+    let (mas, diags) = mas2g::parse(src, "x.mas2g");
+    assert!(diags.is_empty(), "{diags:?}");
+    assert!(mas.may_launch("bob1") && mas.may_launch("bob2") && mas.may_launch("a"));
+    assert!(!mas.may_launch("bob") && !mas.may_launch("bob3") && !mas.may_launch("carol"));
+}
+
+#[test]
+fn negative_fixtures_report_their_code_at_the_expected_place() {
+    for (rel, code, line, col) in common::negative_fixtures("tests/fixtures/mas2g/invalid", "mas2g")
+    {
+        let (source, _, diags) = parse_and_check(&rel);
+        common::assert_reported(&rel, &source, &diags, &code, line, col);
+        let stem = Path::new(&rel)
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("?")
+            .to_string();
+        insta::assert_snapshot!(
+            format!("mas2g_invalid_{stem}"),
+            common::render_all(&source, &diags)
+        );
+    }
+}
+
+#[test]
+fn garbage_never_panics() {
+    let inputs = [
+        "",
+        "}",
+        "{",
+        "environment",
+        "environment {",
+        "agentfiles { \"a",
+        "launchpolicy { launch",
+        "launchpolicy { when [",
+        "environment { env = \"x\" + }",
+        "/*",
+        "%",
+        "\u{0}",
+        "[[[[",
+        "launchpolicy { launch a:b[99999999999999999999]. }",
+        "agentfiles { . . . }",
+    ];
+    for input in inputs {
+        let (_, diags) = mas2g::parse(input, "g.mas2g");
+        for d in &diags {
+            assert!(
+                d.span.start <= d.span.end && d.span.end <= input.len() + 1,
+                "{input:?}: {d:?}"
+            );
+        }
+    }
+}
