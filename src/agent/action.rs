@@ -100,14 +100,11 @@ impl Core {
         } else {
             self.ms.attention.current()
         };
-        if self
-            .ms
-            .is_goal_in(base, g, &mut self.rng, &mut self.kr_out)?
-        {
+        if self.ms.is_goal_in(base, g)? {
             self.failed(&act, "already a goal");
             return Ok(Outcome::NotRun);
         }
-        if self.ms.believes(g, &mut self.rng, &mut self.kr_out)? {
+        if self.ms.believes(g)? {
             self.failed(&act, "already believed");
             return Ok(Outcome::NotRun);
         }
@@ -131,11 +128,7 @@ impl Core {
         for i in 0..depth {
             let goals = self.ms.attention.all_mut()[i].goals().to_vec();
             for g in goals {
-                if !self
-                    .ms
-                    .in_goal(&g, q, &mut self.rng, &mut self.kr_out)?
-                    .is_empty()
-                {
+                if !self.ms.in_goal(&g, q)?.is_empty() {
                     victims.push((i, g.term.clone()));
                 }
             }
@@ -167,7 +160,7 @@ impl Core {
         }
         let head = Term::compound(spec.name, spec.params.clone());
         let pre = m.apply(&spec.pre);
-        let answers = self.ms.bel(&pre, &mut self.rng, &mut self.kr_out)?;
+        let answers = self.ms.bel(&pre)?;
         let grounding: Vec<Subst> = answers
             .iter()
             .map(|a| compose(&m, a))
@@ -214,8 +207,7 @@ impl Core {
     /// Blind commitment on the current attention set.
     pub fn check_goals(&mut self) -> Result<(), Fault> {
         let mut ev = Vec::new();
-        self.ms
-            .goal_check(&mut self.rng, &mut self.kr_out, &mut ev)?;
+        self.ms.goal_check(&mut ev)?;
         self.changes(ev);
         Ok(())
     }

@@ -7,7 +7,6 @@ use super::mental_state::MentalState;
 use super::program::Lit;
 use crate::syntax::ast::MentalOp;
 use crate::term::{Subst, Term};
-use rand_chacha::ChaCha8Rng;
 
 /// Extends `base` with the bindings of `answer`.
 pub fn compose(base: &Subst, answer: &Subst) -> Subst {
@@ -32,18 +31,12 @@ pub struct CondCtx<'a> {
 }
 
 /// All answers of the condition `lits` extending `base`.
-pub fn eval(
-    cx: &CondCtx<'_>,
-    lits: &[Lit],
-    base: &Subst,
-    rng: &mut ChaCha8Rng,
-    out: &mut String,
-) -> Result<Vec<Subst>, Fault> {
+pub fn eval(cx: &CondCtx<'_>, lits: &[Lit], base: &Subst) -> Result<Vec<Subst>, Fault> {
     let mut answers = vec![base.clone()];
     for lit in lits {
         let mut next = Vec::new();
         for theta in &answers {
-            for a in literal(cx, lit, theta, rng, out)? {
+            for a in literal(cx, lit, theta)? {
                 push_unique(&mut next, a);
             }
         }
@@ -56,13 +49,7 @@ pub fn eval(
 }
 
 /// The answers of one literal under `theta` (each extends `theta`).
-fn literal(
-    cx: &CondCtx<'_>,
-    lit: &Lit,
-    theta: &Subst,
-    rng: &mut ChaCha8Rng,
-    out: &mut String,
-) -> Result<Vec<Subst>, Fault> {
+fn literal(cx: &CondCtx<'_>, lit: &Lit, theta: &Subst) -> Result<Vec<Subst>, Fault> {
     let Lit::Mental {
         negated,
         top_level,
@@ -76,7 +63,7 @@ fn literal(
     let ms = cx.ms;
     let mut raw: Vec<Subst> = Vec::new();
     match op {
-        MentalOp::Bel => raw = ms.bel(&q, rng, out)?,
+        MentalOp::Bel => raw = ms.bel(&q)?,
         MentalOp::Goal | MentalOp::AGoal | MentalOp::GoalA => {
             let single;
             let goals: &[Goal] = match (top_level, cx.only) {
@@ -88,7 +75,7 @@ fn literal(
                 (false, None) => ms.attention.current().goals(),
             };
             for g in goals {
-                for a in ms.in_goal(g, &q, rng, out)? {
+                for a in ms.in_goal(g, &q)? {
                     if *op != MentalOp::Goal {
                         let inst = a.apply(&q);
                         if !inst.is_ground() {
@@ -105,7 +92,7 @@ fn literal(
                                 binding: Some(show_subst(theta)),
                             });
                         }
-                        let believed = ms.believes(&inst, rng, out)?;
+                        let believed = ms.believes(&inst)?;
                         if believed != (*op == MentalOp::GoalA) {
                             continue;
                         }

@@ -135,6 +135,7 @@ impl Agent {
             &Term::atom(name),
             &others,
             config.limits,
+            config.seed ^ 0x9e37_79b9_7f4a_7c15,
         );
         Agent {
             program,
@@ -198,6 +199,8 @@ impl Agent {
                 self.stop(StopReason::Error(e));
             }
         }
+        let kr_text = self.core.ms.take_output();
+        self.core.kr_out.push_str(&kr_text);
         if !self.core.kr_out.is_empty() {
             let text = std::mem::take(&mut self.core.kr_out);
             self.core

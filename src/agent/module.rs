@@ -122,7 +122,7 @@ impl Core {
             (Focus::Filter, Some((cs, _, lits))) => {
                 let mut base = GoalBase::default();
                 for g in goal_literals(lits, cs) {
-                    if g.is_ground() && !self.ms.believes(&g, &mut self.rng, &mut self.kr_out)? {
+                    if g.is_ground() && !self.ms.believes(&g)? {
                         base.add(Goal::new(g));
                     }
                 }

@@ -29,7 +29,7 @@ impl Core {
                     ms: &self.ms,
                     only: Some(g),
                 };
-                for s in eval(&cx, &rule.cond, base, &mut self.rng, &mut self.kr_out)? {
+                for s in eval(&cx, &rule.cond, base)? {
                     match answers.iter_mut().find(|a| a.subst == s) {
                         Some(a) => a.goals.push(g.clone()),
                         None => answers.push(Answer {
@@ -44,7 +44,7 @@ impl Core {
                 ms: &self.ms,
                 only: None,
             };
-            answers = eval(&cx, &rule.cond, base, &mut self.rng, &mut self.kr_out)?
+            answers = eval(&cx, &rule.cond, base)?
                 .into_iter()
                 .map(|subst| Answer {
                     subst,
