@@ -482,3 +482,142 @@ fn combos_stop_at_the_first_action_that_did_not_run() {
         "exit-module after the failed action never runs"
     );
 }
+
+#[test]
+fn typed_percepts_follow_their_declared_types() {
+    use goal::agent::{Agent, AgentConfig, PerceptType as P, PerceptTypes};
+    let types = PerceptTypes::new([
+        (("place".to_string(), 1), P::Once),
+        (("at".to_string(), 1), P::OnChange),
+        (("door".to_string(), 1), P::OnChangeNeg),
+        (("see".to_string(), 1), P::Always),
+    ]);
+    let cfg = AgentConfig {
+        percept_types: std::sync::Arc::new(types),
+        ..AgentConfig::default()
+    };
+    let mut a = Agent::new(
+        program("main module { program { if bel(nothing) then print(x). } }"),
+        "a",
+        cfg,
+    );
+    let seen = |a: &Agent| {
+        let mut v: Vec<String> = a
+            .mental_state()
+            .percepts
+            .facts()
+            .iter()
+            .map(|t| t.args()[0].to_string())
+            .collect();
+        v.sort();
+        v
+    };
+    step(
+        &mut a,
+        &[
+            "place(r1)",
+            "at(r1)",
+            "door(d1)",
+            "door(d2)",
+            "see(b1)",
+            "unknown(1)",
+        ],
+        &[],
+    );
+    assert_eq!(
+        seen(&a),
+        [
+            "at(r1)",
+            "door(d1)",
+            "door(d2)",
+            "place(r1)",
+            "see(b1)",
+            "unknown(1)"
+        ]
+    );
+    // Once stays, on-change stays until it changes, always/unknown vanish when not sent.
+    step(&mut a, &["not(door(d1))"], &[]);
+    assert_eq!(seen(&a), ["at(r1)", "door(d2)", "place(r1)"]);
+    step(&mut a, &["at(r2)", "door(d3)"], &[]);
+    assert_eq!(seen(&a), ["at(r2)", "door(d2)", "door(d3)", "place(r1)"]);
+    step(&mut a, &["not(place(r1))"], &[]);
+    assert_eq!(seen(&a), ["at(r2)", "door(d2)", "door(d3)"]);
+}
+
+#[test]
+fn bel_percept_reads_the_percept_base() {
+    let mut a = agent("main module { program { forall bel(percept(see(X))) do print(X). } }");
+    assert_eq!(
+        step(&mut a, &["see(b1)", "see(b2)"], &[]).printed,
+        ["b1", "b2"]
+    );
+}
+
+#[test]
+fn a_goal_with_a_non_ground_instance_is_a_runtime_error() {
+    let mut a = agent(
+        "init module { knowledge { want(_) :- true. } goals { g. } }
+         main module { program { if a-goal(want(X)) then print(X). } }",
+    );
+    match a.step(&[], &[]).stopped {
+        Some(StopReason::Error(e)) => assert!(e.message.contains("not ground"), "{e}"),
+        other => panic!("expected an error, got {other:?}"),
+    }
+}
+
+#[test]
+fn agent_and_me_facts_are_believed() {
+    let mut a = agent_with(
+        "main module { program { if bel(me(M)) then print(M) + exit-module. } }
+         event module { program { forall bel(agent(X)) do print(X). } }",
+        "a",
+        &["b"],
+        1,
+    );
+    assert_eq!(step(&mut a, &["tick"], &[]).printed, ["b", "a", "a"]);
+}
+
+#[test]
+fn log_is_not_a_real_action() {
+    let mut a = agent(
+        "main module { program {
+            if true then log(hello).
+            if true then print(after) + exit-module. } }",
+    );
+    let out = a.step(&[], &[]);
+    assert_eq!(out.printed, ["after"], "log does not end a linear pass");
+    assert!(out
+        .events
+        .iter()
+        .any(|e| matches!(e, goal::agent::Event::Log { text } if text == "hello")));
+}
+
+#[test]
+fn ten_thousand_agents_share_one_program() {
+    let p = program(
+        "init module { beliefs { n(0). } }
+         main module { program { if bel(n(X), Y is X + 1) then delete(n(X)) + insert(n(Y)). } }",
+    );
+    let mut agents: Vec<goal::agent::Agent> = (0..10_000)
+        .map(|i| {
+            goal::agent::Agent::new(
+                p.clone(),
+                &format!("bot{i}"),
+                goal::agent::AgentConfig {
+                    seed: i,
+                    trace: goal::agent::TraceLevel::Off,
+                    ..Default::default()
+                },
+            )
+        })
+        .collect();
+    for a in agents.iter_mut() {
+        a.step(&[], &[]);
+    }
+    assert_eq!(
+        std::sync::Arc::strong_count(&p),
+        10_001,
+        "no per-agent copy of the program"
+    );
+    assert!(agents.iter().all(|a| beliefs(a) == ["n(1)"]));
+}
