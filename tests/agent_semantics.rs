@@ -621,3 +621,39 @@ fn ten_thousand_agents_share_one_program() {
     );
     assert!(agents.iter().all(|a| beliefs(a) == ["n(1)"]));
 }
+
+#[test]
+fn newpercept_holds_only_the_current_batch() {
+    use goal::agent::{Agent, AgentConfig, PerceptType, PerceptTypes};
+    let cfg = AgentConfig {
+        percept_types: std::sync::Arc::new(PerceptTypes::new([(
+            ("at".to_string(), 1),
+            PerceptType::OnChange,
+        )])),
+        ..AgentConfig::default()
+    };
+    let mut a = Agent::new(
+        program(
+            "main module { program {
+                if bel(newpercept(at(R))) then print(arrived(R)).
+                if bel(percept(at(R))) then print(still(R)). } }",
+        ),
+        "a",
+        cfg,
+    );
+    assert_eq!(step(&mut a, &["at(r1)"], &[]).printed, ["arrived(r1)"]);
+    assert_eq!(step(&mut a, &[], &[]).printed, ["still(r1)"]);
+}
+
+#[test]
+fn log_bb_writes_the_belief_base() {
+    let mut a = agent(
+        "init module { beliefs { p(1). q. } }
+         main module { program { if true then log(bb) + exit-module. } }",
+    );
+    let out = a.step(&[], &[]);
+    assert!(out
+        .events
+        .iter()
+        .any(|e| matches!(e, goal::agent::Event::Log { text } if text == "p(1)\nq")));
+}

@@ -57,7 +57,15 @@ impl Core {
                 Ok(Outcome::Done { real: true })
             }
             Act::Log(t) => {
-                let text = s.apply(t).to_text(Style::WRITE);
+                let t = s.apply(t);
+                let text = match t.to_text(Style::WRITE).as_str() {
+                    "bb" => join(self.ms.beliefs.iter()),
+                    "pb" => join(self.ms.percepts.facts().iter()),
+                    "mb" => join(self.ms.mailbox.facts().iter()),
+                    "gb" => join(self.ms.attention.current().goals().iter().map(|g| &g.term)),
+                    "kb" => format!("{} knowledge clauses", self.ms.knowledge.len()),
+                    other => other.to_string(),
+                };
                 self.changes(vec![Event::Log { text }]);
                 Ok(Outcome::Done { real: false })
             }
@@ -211,6 +219,11 @@ impl Core {
         self.changes(ev);
         Ok(())
     }
+}
+
+/// Facts printed one per line (for `log(bb)` and friends).
+fn join<'a>(facts: impl Iterator<Item = &'a Term>) -> String {
+    facts.map(|f| f.to_string()).collect::<Vec<_>>().join("\n")
 }
 
 fn ground(s: &Subst, t: &Term, what: &str) -> Result<Term, Fault> {

@@ -94,12 +94,13 @@ impl MentalState {
         Ok(false)
     }
 
-    fn bases(&self) -> [&FactBase; 4] {
+    fn bases(&self) -> [&FactBase; 5] {
         [
             &self.beliefs,
             self.percepts.facts(),
             self.mailbox.facts(),
             &self.agents,
+            self.percepts.batch(),
         ]
     }
 
