@@ -80,9 +80,20 @@ pub fn check_path(path: &Path) -> FileReport {
     };
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
     let diagnostics = match ext {
-        "goal" => goal::parse_goal(&file, &source).1,
+        "goal" => {
+            let (program, mut d) = goal::parse_goal(&file, &source);
+            d.extend(crate::syntax::validate::validate(
+                &program,
+                Some(base_dir(path)),
+            ));
+            d
+        }
         "mod2g" => goal::parse_mod2g(&file, &source).1,
-        "pl" => Reader::new(file.as_str()).clauses(&source, 0).1,
+        "pl" => {
+            let (clauses, mut d) = Reader::new(file.as_str()).clauses(&source, 0);
+            d.extend(crate::syntax::validate::validate_prolog(&clauses, &file));
+            d
+        }
         "mas2g" => {
             let (mas, mut d) = crate::syntax::mas2g::parse(&source, &file);
             d.extend(crate::syntax::mas2g::check_files(&mas, base_dir(path)));

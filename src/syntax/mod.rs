@@ -8,3 +8,4 @@ pub mod lexer;
 pub mod mas2g;
 pub mod prolog;
 pub mod test2g;
+pub mod validate;

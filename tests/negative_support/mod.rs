@@ -77,3 +77,59 @@ pub fn render_all(source: &str, diags: &[Diagnostic]) -> String {
         .collect::<Vec<_>>()
         .join("")
 }
+
+/// A random mutant of `src`: 1-4 rounds of deleting, inserting (a fragment of `tokens`),
+/// duplicating, swapping or overwriting byte ranges. Invalid UTF-8 is replaced lossily.
+pub fn mutate(rng: &mut rand_chacha::ChaCha8Rng, src: &[u8], tokens: &[&str]) -> String {
+    use rand::Rng;
+    let mut v = src.to_vec();
+    for _ in 0..rng.gen_range(1..=4) {
+        let len = v.len();
+        let a = rng.gen_range(0..=len);
+        let b = (a + rng.gen_range(0..=40)).min(len);
+        match rng.gen_range(0..5) {
+            0 => {
+                v.drain(a..b);
+            }
+            1 => {
+                let t = tokens[rng.gen_range(0..tokens.len())];
+                v.splice(a..a, t.bytes());
+            }
+            2 => {
+                let piece = v[a..b].to_vec();
+                v.splice(b..b, piece);
+            }
+            3 => {
+                let c = rng.gen_range(0..=len);
+                let d = (c + rng.gen_range(0..=40)).min(len);
+                if b <= c {
+                    let (x, y) = (v[a..b].to_vec(), v[c..d].to_vec());
+                    v.splice(c..d, x);
+                    v.splice(a..b, y);
+                }
+            }
+            _ => {
+                if a < len {
+                    v[a] = rng.gen_range(0x20..0x7f);
+                }
+            }
+        }
+    }
+    String::from_utf8_lossy(&v).into_owned()
+}
+
+/// Asserts that every diagnostic lies within `src` and belongs to `file` or names another file.
+pub fn assert_spans_inside(file: &str, src: &str, diags: &[Diagnostic]) {
+    for d in diags {
+        if d.file != file {
+            continue; // diagnostics about other files (e.g. a MAS file named by a test)
+        }
+        assert!(
+            d.span.start <= d.span.end && d.span.end <= src.len(),
+            "span {:?} outside the file ({} bytes): {d:?}\n--- input ---\n{src}",
+            d.span,
+            src.len()
+        );
+        assert!(!d.message.is_empty());
+    }
+}

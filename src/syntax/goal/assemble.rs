@@ -101,7 +101,11 @@ impl Builder<'_> {
                             format!("legacy two-argument form `{word}({receiver}, ...)`"),
                             span.clone(),
                         )
-                        .hint = Some(format!("write `({receiver}).{word}(...)`"));
+                        .hint = Some(if matches!(kind, SelectorKind::Agents(_)) {
+                            format!("write `({receiver}).{word}(...)`")
+                        } else {
+                            format!("write `{receiver}.{word}(...)`")
+                        });
                         let sel = Selector {
                             kind,
                             span: Some(receiver_span),

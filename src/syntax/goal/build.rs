@@ -325,8 +325,9 @@ impl<'s> Builder<'s> {
 
     /// The variable of a `listall` rule.
     pub fn listall_var(&mut self, span: Span) -> Located {
+        let before = self.diagnostics.len();
         let t = self.term(span.clone());
-        if !t.term.is_var() {
+        if self.diagnostics.len() == before && !t.term.is_var() {
             self.error(
                 "E0022",
                 format!("`listall` needs a variable, found `{}`", self.text(&span)),

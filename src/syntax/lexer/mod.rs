@@ -197,7 +197,7 @@ impl<'s> Lexer<'s> {
                         return self.scan_error(ScanError::UnterminatedQuote { start, quote: ch });
                     }
                     self.diagnostics.push(Diagnostic::error(
-                        "E0010",
+                        "E0009",
                         format!("unexpected character `{}`", ch.escape_debug()),
                         self.file.clone(),
                         start..end,

@@ -66,7 +66,9 @@ pub fn check_files(mas: &MasFile, base_dir: &Path) -> Vec<Diagnostic> {
             );
         }
         let name = f.reference_name();
-        if refs.contains_key(&name) {
+        if let std::collections::btree_map::Entry::Vacant(e) = refs.entry(name.clone()) {
+            e.insert(i);
+        } else {
             let span = f
                 .name
                 .as_ref()
@@ -80,8 +82,26 @@ pub fn check_files(mas: &MasFile, base_dir: &Path) -> Vec<Diagnostic> {
                 )
                 .with_hint("give one of the files a different `[name = ...]`"),
             );
-        } else {
-            refs.insert(name, i);
+        }
+    }
+    // `name` (one agent) and `name[N]` (name1..nameN) do not clash with each other.
+    let mut given: BTreeMap<(String, bool), ()> = BTreeMap::new();
+    for inst in mas.launch_rules.iter().flat_map(|r| &r.instructions) {
+        let (name, span) = match &inst.name {
+            Some(AgentName::Entity(_)) => continue,
+            Some(AgentName::Given(g)) => (g.value.clone(), g.span.clone()),
+            None => (inst.reference.value.clone(), inst.reference.span.clone()),
+        };
+        if given.insert((name.clone(), inst.count() > 1), ()).is_some() {
+            diags.push(
+                Diagnostic::warning(
+                    "W0209",
+                    format!("agent name `{name}` is launched by more than one instruction"),
+                    file,
+                    span,
+                )
+                .with_hint("agent names must be unique; the runtime renames the later agents"),
+            );
         }
     }
     let mut launched = vec![false; mas.agent_files.len()];
@@ -139,12 +159,10 @@ pub fn check_files(mas: &MasFile, base_dir: &Path) -> Vec<Diagnostic> {
 /// The paths of the agent files named in `mas`, resolved against `base_dir` (the first entry of
 /// each reference name only).
 pub fn agent_file_paths(mas: &MasFile, base_dir: &Path) -> Vec<PathBuf> {
-    let mut seen = Vec::new();
+    let mut seen = std::collections::BTreeSet::new();
     let mut out = Vec::new();
     for f in &mas.agent_files {
-        let name = f.reference_name();
-        if !seen.contains(&name) {
-            seen.push(name);
+        if seen.insert(f.reference_name()) {
             out.push(base_dir.join(&f.path.value));
         }
     }
@@ -171,5 +189,38 @@ impl MasFile {
                     .and_then(|n| n.parse::<u64>().ok())
                     .is_some_and(|k| k >= 1 && k <= inst.count())
             })
+    }
+}
+
+impl MasFile {
+    /// The agent files that an agent called `name` may run (by the launch instructions that can
+    /// create that name; several when entity-named rules are involved).
+    pub fn agent_files_for(&self, name: &str) -> Vec<&super::ast::AgentFile> {
+        let mut refs: Vec<&str> = Vec::new();
+        for inst in self.launch_rules.iter().flat_map(|r| &r.instructions) {
+            let base = match &inst.name {
+                Some(AgentName::Entity(_)) => None,
+                Some(AgentName::Given(g)) => Some(g.value.as_str()),
+                None => Some(inst.reference.value.as_str()),
+            };
+            let matches = match base {
+                None => true,
+                Some(b) if inst.count() <= 1 => name == b,
+                Some(b) => name
+                    .strip_prefix(b)
+                    .and_then(|n| n.parse::<u64>().ok())
+                    .is_some_and(|k| k >= 1 && k <= inst.count()),
+            };
+            if matches && !refs.contains(&inst.reference.value.as_str()) {
+                refs.push(inst.reference.value.as_str());
+            }
+        }
+        let mut out: Vec<&super::ast::AgentFile> = Vec::new();
+        for r in refs {
+            if let Some(f) = self.agent_files.iter().find(|f| f.reference_name() == r) {
+                out.push(f);
+            }
+        }
+        out
     }
 }

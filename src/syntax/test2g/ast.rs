@@ -33,6 +33,7 @@ pub struct NamedTest {
 }
 
 /// One step of a named test.
+#[allow(clippy::large_enum_variant)] // few per file; boxing would only add noise
 #[derive(Clone, Debug, PartialEq)]
 pub enum TestSection {
     /// `do combo.`
@@ -89,6 +90,7 @@ pub struct TemporalPart {
 }
 
 /// A condition of an `evaluate` block.
+#[allow(clippy::large_enum_variant)] // few per file; boxing would only add noise
 #[derive(Clone, Debug, PartialEq)]
 pub enum TemporalCondition {
     /// `P -> Q -> ...`: each answer of a part starts an instance of the next.
