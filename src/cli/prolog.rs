@@ -132,7 +132,13 @@ fn run_query(kb: &engine::Kb, text: &str, file: &str, out: &mut impl Write) -> R
         }
     };
     let vars = named_vars(&query);
-    let (answers, error) = kb.solve(&query);
+    let (answers, error, output) = kb.solve(&query);
+    if !output.is_empty() {
+        let _ = write!(out, "{output}");
+        if !output.ends_with('\n') {
+            let _ = writeln!(out);
+        }
+    }
     for a in &answers {
         let _ = writeln!(out, "{}", answer_line(&vars, a));
     }
@@ -192,29 +198,48 @@ fn unbound_as_underscore(t: &Term) -> Term {
     }
 }
 
-/// The knowledge base behind the command (the native engine, as agents use it).
+/// The knowledge base behind the command: the native engine with the agents' default limits.
 mod engine {
+    use goal::kr::{Engine, FactBase, Knowledge, KrError, NativeEngine, View};
     use goal::term::{Subst, Term};
+    use std::cell::RefCell;
+    use std::sync::Arc;
 
-    /// Loaded knowledge.
+    /// Loaded knowledge and the engine that queries it.
     pub struct Kb {
-        _clauses: Vec<Term>,
+        knowledge: Arc<Knowledge>,
+        engine: RefCell<NativeEngine>,
     }
 
     impl Kb {
         /// Compiles clauses; on failure, (clause index, message) for every rejected clause.
         pub fn load(clauses: &[Term]) -> Result<Kb, Vec<(usize, String)>> {
-            Ok(Kb {
-                _clauses: clauses.to_vec(),
-            })
+            match Knowledge::load(clauses) {
+                Ok(knowledge) => Ok(Kb {
+                    knowledge,
+                    engine: RefCell::new(NativeEngine::default()),
+                }),
+                Err(KrError::Load(errors)) => {
+                    Err(errors.into_iter().map(|e| (e.clause, e.message)).collect())
+                }
+                Err(e) => Err(vec![(usize::MAX, e.to_string())]),
+            }
         }
 
-        /// All answers of `query` and the error that stopped it, if any.
-        pub fn solve(&self, _query: &Term) -> (Vec<Subst>, Option<Term>) {
-            (
-                vec![],
-                Some(Term::atom("the native Prolog engine is not built yet")),
-            )
+        /// All answers of `query`, the error that stopped it (if any), and the text written by
+        /// output built-ins.
+        pub fn solve(&self, query: &Term) -> (Vec<Subst>, Option<Term>, String) {
+            let empty = FactBase::new();
+            let bases = [&empty];
+            let view = View::beliefs(&self.knowledge, &bases);
+            let mut engine = self.engine.borrow_mut();
+            let mut answers = Vec::new();
+            let result = engine.solve(&view, query, &mut |s| {
+                answers.push(s);
+                true
+            });
+            let output = engine.take_output();
+            (answers, result.err().map(|e| e.to_term()), output)
         }
     }
 }

@@ -113,7 +113,7 @@ fn goal(rng: &mut ChaCha8Rng, depth: u32) -> Term {
             vec![
                 v(VARS.choose(rng).copied().unwrap_or("X")),
                 goal(rng, depth - 1),
-                v("L"),
+                result_var(rng, "L"),
             ],
         ),
         87..=89 => {
@@ -126,7 +126,10 @@ fn goal(rng: &mut ChaCha8Rng, depth: u32) -> Term {
             } else {
                 c(what, vec![v(VARS.choose(rng).copied().unwrap_or("X"))])
             };
-            c("aggregate_all", vec![tmpl, literal(rng), v("N")])
+            c(
+                "aggregate_all",
+                vec![tmpl, literal(rng), result_var(rng, "N")],
+            )
         }
         90..=92 => c("forall", vec![literal(rng), literal(rng)]),
         93..=95 => c("once", vec![literal(rng)]),
@@ -139,10 +142,17 @@ fn goal(rng: &mut ChaCha8Rng, depth: u32) -> Term {
             } else {
                 g
             };
-            c(name, vec![v("X"), g, v("L")])
+            c(name, vec![v("X"), g, result_var(rng, "L")])
         }
         _ => and(vec![literal(rng), a("!"), literal(rng)]),
     }
+}
+
+/// A fresh result variable (`L17`, `N3`, ...): a result argument that is already bound to a
+/// non-list is a known disagreement (see `KNOWN_DISAGREEMENTS` in `tests/kr_diff.rs`), tested
+/// on its own instead.
+fn result_var(rng: &mut ChaCha8Rng, prefix: &str) -> Term {
+    v(&format!("{prefix}{}", rng.gen_range(0..1000)))
 }
 
 /// A random query over the fact set predicates.
@@ -273,6 +283,9 @@ pub fn list_query(rng: &mut ChaCha8Rng) -> Term {
 }
 
 /// Queries that raise errors on both engines: the error terms (their formal part) must agree.
+/// Left out on purpose: `atom_length(123, L)` (SWI, and so GOAL, accepts numbers; ISO and
+/// scryer raise `type_error`), syntax errors of `number_codes/2` (the formal term is
+/// implementation-specific) and `length(L, -1)` (SWI and ISO differ).
 pub fn error_queries() -> Vec<Term> {
     vec![
         op("is", v("X"), op("+", v("Y"), i(1))),
@@ -286,5 +299,20 @@ pub fn error_queries() -> Vec<Term> {
         c("call", vec![v("G")]),
         c("call", vec![i(1)]),
         c("atom_codes", vec![v("X"), v("Y")]),
+        c("atom_chars", vec![v("X"), list(vec![a("ab")])]),
+        c(
+            "findall",
+            vec![v("X"), c("member", vec![v("X"), list(vec![i(1)])]), i(9)],
+        ),
+        c(
+            "aggregate_all",
+            vec![c("bag", vec![v("X")]), a("fail"), i(9)],
+        ),
+        c("atom_length", vec![a("abc"), a("x")]),
+        op("is", v("X"), c("foo", vec![i(1)])),
+        c("sub_atom", vec![v("A"), v("B"), v("L"), v("C"), a("x")]),
+        c("succ", vec![v("X"), i(0)]),
+        c("between", vec![i(1), a("x"), v("X")]),
+        c("nth0", vec![a("x"), list(vec![a("ab")]), v("E")]),
     ]
 }

@@ -22,6 +22,7 @@ pub const PRELUDE: &str = r#"
 :- set_prolog_flag(unknown, fail).
 
 not(G) :- \+ call(G).
+ignore(G) :- ( call(G) -> true ; true ).
 
 '$goal_is'(X, E) :- '$goal_eval'(E, V), X = V.
 '$goal_cmp'(Op, A, B) :- '$goal_eval'(A, VA), '$goal_eval'(B, VB), G =.. [Op, VA, VB], call(G).
@@ -143,8 +144,25 @@ impl Scryer {
 
     /// Loads clauses (printed from `Term`s, so the text is always well formed).
     pub fn load(&mut self, clauses: &[Term]) {
-        let mut text = String::new();
+        // scryer keeps only the last group of a discontiguous predicate: group the clauses by
+        // predicate (in order of first appearance, keeping their relative order).
+        let key = |c: &Term| {
+            let head = match c {
+                Term::Compound(k) if k.name.name() == ":-" && k.args.len() == 2 => &k.args[0],
+                other => other,
+            };
+            head.functor().map(|(n, a)| (n.name().to_string(), a))
+        };
+        let mut groups: Vec<(Option<(String, usize)>, Vec<&Term>)> = Vec::new();
         for c in clauses {
+            let k = key(c);
+            match groups.iter_mut().find(|(g, _)| *g == k) {
+                Some((_, v)) => v.push(c),
+                None => groups.push((k, vec![c])),
+            }
+        }
+        let mut text = String::new();
+        for c in groups.iter().flat_map(|(_, v)| v.iter()) {
             text.push_str(&clause_text(c));
         }
         self.modules += 1;
@@ -247,7 +265,10 @@ pub fn clause_text(clause: &Term) -> String {
 ///   answers for goals without side effects) and `C *-> T` becomes `(C, T)`;
 /// - GOAL evaluates like SWI-Prolog, where `/` of two integers is an integer when exact and
 ///   `**` of two integers is an integer, while scryer gives floats: `is/2` and the arithmetic
-///   comparisons go through the prelude's `'$goal_eval'/2`, which applies SWI's meaning.
+///   comparisons go through the prelude's `'$goal_eval'/2`, which applies SWI's meaning;
+/// - scryer 0.10 lets a cut in the condition of if-then-else cut the else branch too
+///   (`((true, !, fail) -> true ; X = c)` fails; ISO: `X = c`): conditions run under `call/1`,
+///   which ISO makes equivalent (the condition is opaque to cut).
 pub fn to_scryer(t: &Term) -> Term {
     let Term::Compound(c) = t else {
         return t.clone();
@@ -265,6 +286,13 @@ pub fn to_scryer(t: &Term) -> Term {
         ("<" | ">" | "=<" | ">=" | "=:=" | "=\\=", [l, r]) => Term::compound(
             Sym::intern("$goal_cmp"),
             vec![Term::Atom(c.name), l.clone(), r.clone()],
+        ),
+        ("->", [cond, then]) => Term::compound(
+            c.name,
+            vec![
+                Term::compound(Sym::intern("call"), vec![cond.clone()]),
+                then.clone(),
+            ],
         ),
         ("*->", [cond, then]) => Term::compound(
             Sym::intern("$goal_softcut_pair"),

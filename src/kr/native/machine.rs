@@ -204,7 +204,18 @@ impl<'a, 'm> Solver<'a, 'm> {
         self.m.st.unify(a, b)
     }
 
-    fn push_frame(&mut self, goal: Goal, next: u32, cut: u32, depth: u32) -> u32 {
+    /// The depth of a frame: the length of its continuation (so tail calls do not deepen).
+    #[inline]
+    fn depth_of(&self, next: u32) -> u32 {
+        if next == NONE {
+            0
+        } else {
+            self.m.frames[next as usize].depth
+        }
+    }
+
+    fn push_frame(&mut self, goal: Goal, next: u32, cut: u32, _depth: u32) -> u32 {
+        let depth = self.depth_of(next) + 1;
         self.m.frames.push(Frame {
             goal,
             next,
@@ -253,6 +264,13 @@ impl<'a, 'm> Solver<'a, 'm> {
                 return Ok(true);
             }
             let f = self.m.frames[self.cont as usize];
+            // The newest frame, not protected by a choicepoint, is garbage once read: reuse
+            // its slot (this keeps deterministic tail recursion in constant frame space).
+            if self.cont as usize + 1 == self.m.frames.len()
+                && self.m.cps.last().is_none_or(|c| c.frames <= self.cont)
+            {
+                self.m.frames.pop();
+            }
             let ok = match f.goal {
                 Goal::Call(g) => self.call(g, f.next, f.cut, f.depth)?,
                 Goal::CutTo(b) => {
@@ -430,7 +448,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                     None
                 };
                 let b = self.m.cps.len() as u32;
-                if depth >= self.cx.limits.max_depth {
+                if depth > self.cx.limits.max_depth {
                     return Err(KrError::Depth {
                         predicate: format!("{}/{}", Term::Atom(name), arity),
                         limit: self.cx.limits.max_depth,
@@ -536,19 +554,26 @@ impl<'a, 'm> Solver<'a, 'm> {
             for i in 0..pred.arity {
                 let c = cl.code.cells[(off + 1 + i) as usize];
                 let h = m.st.heap[(gp + 1 + i) as usize];
-                if !cl.code.unify(&mut m.st, c, h, &mut m.slots) {
+                if !cl.code.unify_arg(&mut m.st, c, h, &mut m.slots) {
                     return false;
                 }
             }
         }
         let mut nx = next;
+        let mut d = if next == NONE {
+            0
+        } else {
+            m.frames[next as usize].depth
+        };
+        let _ = depth;
         for g in cl.body.iter().rev() {
             let c = cl.code.build(&mut m.st, *g, &mut m.slots);
+            d += 1;
             m.frames.push(Frame {
                 goal: Goal::Call(c),
                 next: nx,
                 cut,
-                depth: depth + 1,
+                depth: d,
             });
             nx = m.frames.len() as u32 - 1;
         }
@@ -663,6 +688,35 @@ impl<'a, 'm> Solver<'a, 'm> {
     /// Unifies a heap term with a stored fact without copying the fact (only the parts bound
     /// to variables are copied).
     pub fn unify_fact(&mut self, c: Cell, t: &Term) -> bool {
+        // Fast path: the arguments of a fact are usually atomic.
+        if let (Cell::Ptr(p), Term::Compound(k)) = (self.m.st.deref(c), t) {
+            if self.m.st.heap[p as usize].fun() != Some((k.name, k.args.len() as u32)) {
+                return false;
+            }
+            for (i, a) in k.args.iter().enumerate() {
+                if !self.unify_fact_arg(self.a(p, i as u32), a) {
+                    return false;
+                }
+            }
+            return true;
+        }
+        self.unify_fact_arg(c, t)
+    }
+
+    fn unify_fact_arg(&mut self, c: Cell, t: &Term) -> bool {
+        match (self.m.st.deref(c), t) {
+            (Cell::Atom(x), Term::Atom(y)) => return x == *y,
+            (Cell::Int(x), Term::Int(y)) => return x == *y,
+            (Cell::Ref(a), Term::Atom(y)) => {
+                self.m.st.bind(a, Cell::Atom(*y));
+                return true;
+            }
+            (Cell::Ref(a), Term::Int(y)) => {
+                self.m.st.bind(a, Cell::Int(*y));
+                return true;
+            }
+            _ => {}
+        }
         let mut work: Vec<(Cell, &Term)> = vec![(c, t)];
         while let Some((c, t)) = work.pop() {
             let c = self.m.st.deref(c);
