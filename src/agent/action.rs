@@ -6,7 +6,7 @@ use super::cycle::Core;
 use super::error::Fault;
 use super::goals::Goal;
 use super::program::{Act, Program, SpecDef};
-use super::trace::Event;
+use super::trace::{Event, TraceLevel};
 use crate::term::{print::Style, Subst, Term};
 use rand::Rng;
 
@@ -28,7 +28,7 @@ impl Core {
                 let mut ev = Vec::new();
                 self.ms.update(&u, true, &mut ev)?;
                 self.changes(ev);
-                self.done(&Term::compound("insert", vec![u]))?;
+                self.done_with(|| Term::compound("insert", vec![u.clone()]));
                 self.check_goals()?;
                 Ok(Outcome::Done { real: true })
             }
@@ -37,7 +37,7 @@ impl Core {
                 let mut ev = Vec::new();
                 self.ms.delete(&u, &mut ev)?;
                 self.changes(ev);
-                self.done(&Term::compound("delete", vec![u]))?;
+                self.done_with(|| Term::compound("delete", vec![u.clone()]));
                 self.check_goals()?;
                 Ok(Outcome::Done { real: true })
             }
@@ -47,7 +47,7 @@ impl Core {
             Act::Drop(t) => {
                 let q = s.apply(t);
                 self.drop_goals(&q)?;
-                self.done(&Term::compound("drop", vec![q]))?;
+                self.done_with(|| Term::compound("drop", vec![q.clone()]));
                 Ok(Outcome::Done { real: true })
             }
             Act::Print(t) => {
@@ -77,6 +77,15 @@ impl Core {
             } => self.send(to, *mood, content, *once, s),
             Act::Spec { spec, args } => self.user_action(&prog.specs[*spec], args, s),
             Act::ExitModule | Act::Module { .. } => Ok(Outcome::Done { real: false }),
+        }
+    }
+
+    /// Records an `ActionPerformed` event built only when the trace records changes.
+    pub fn done_with(&mut self, action: impl FnOnce() -> Term) {
+        if self.level >= TraceLevel::Changes {
+            self.event(Event::ActionPerformed {
+                action: action().to_string(),
+            });
         }
     }
 

@@ -137,6 +137,8 @@ impl Agent {
             config.limits,
             config.seed ^ 0x9e37_79b9_7f4a_7c15,
         );
+        let mut ms = ms;
+        ms.record = config.trace >= TraceLevel::Changes;
         Agent {
             program,
             core: Core {
@@ -230,12 +232,13 @@ impl Agent {
         let prog = self.program.clone();
         let core = &mut self.core;
         let ch = core.ms.percepts.apply(percepts, &self.types);
-        for p in ch.removed {
+        let record = core.level >= TraceLevel::Changes;
+        for p in ch.removed.iter().filter(|_| record) {
             core.event(Event::PerceptRemoved {
                 percept: p.to_string(),
             });
         }
-        for p in ch.added {
+        for p in ch.added.iter().filter(|_| record) {
             core.event(Event::PerceptAdded {
                 percept: p.to_string(),
             });

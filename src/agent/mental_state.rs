@@ -24,6 +24,8 @@ pub struct MentalState {
     /// The KR engine (limits, its own seeded RNG and output buffer); interior mutability lets
     /// queries run while conditions hold a shared borrow of the state.
     pub engine: RefCell<NativeEngine>,
+    /// Record change events (off when the trace level is `Off`, to save the printing).
+    pub record: bool,
 }
 
 /// The effect of an update on the belief base and mailbox.
@@ -55,6 +57,7 @@ impl MentalState {
             agents: facts,
             attention: AttentionStack::default(),
             engine: RefCell::new(NativeEngine::new(seed).with_limits(limits)),
+            record: true,
         }
     }
 
@@ -184,12 +187,12 @@ impl MentalState {
     fn add_fact(&mut self, f: &Term, events: &mut Vec<Event>) {
         if is_mail_fact(f) {
             if self.mailbox.insert(f.clone()) {
-                events.push(Event::MailAdded {
+                self.record_into(events, || Event::MailAdded {
                     fact: f.to_string(),
                 });
             }
         } else if self.beliefs.insert(f.clone()) {
-            events.push(Event::BeliefInserted {
+            self.record_into(events, || Event::BeliefInserted {
                 fact: f.to_string(),
             });
         }
@@ -198,14 +201,20 @@ impl MentalState {
     fn remove_fact(&mut self, f: &Term, events: &mut Vec<Event>) {
         if is_mail_fact(f) {
             if self.mailbox.delete(f) {
-                events.push(Event::MailDeleted {
+                self.record_into(events, || Event::MailDeleted {
                     fact: f.to_string(),
                 });
             }
         } else if self.beliefs.delete(f) {
-            events.push(Event::BeliefDeleted {
+            self.record_into(events, || Event::BeliefDeleted {
                 fact: f.to_string(),
             });
+        }
+    }
+
+    fn record_into(&self, events: &mut Vec<Event>, e: impl FnOnce() -> Event) {
+        if self.record {
+            events.push(e());
         }
     }
 
