@@ -657,3 +657,84 @@ fn log_bb_writes_the_belief_base() {
         .iter()
         .any(|e| matches!(e, goal::agent::Event::Log { text } if text == "p(1)\nq")));
 }
+
+#[test]
+fn nested_blocks_inherit_bindings_and_run_linearall() {
+    let mut a = agent(
+        "init module { beliefs { p(1). p(2). q(2). r(2). } }
+         event module { program {
+            forall bel(p(X)) do {
+                if bel(q(X)) then print(q(X)).
+                if bel(r(X)) then print(r(X)).
+            } } }
+         main module { program { if true then exit-module. } }",
+    );
+    assert_eq!(step(&mut a, &["tick"], &[]).printed, ["q(2)", "r(2)"]);
+}
+
+#[test]
+fn randomall_applies_every_rule_in_a_seeded_random_order() {
+    let src = "event module { program [order=randomall] {
+            if true then print(a). if true then print(b). if true then print(c). if true then print(d). } }
+         main module { program { if true then exit-module. } }";
+    let order = |seed| step(&mut agent_with(src, "x", &[], seed), &["tick"], &[]).printed;
+    let mut first = order(1);
+    assert_eq!(order(1), first, "same seed, same order");
+    first.sort();
+    assert_eq!(first, ["a", "b", "c", "d"], "every rule applies once");
+    let orders: std::collections::BTreeSet<Vec<String>> = (0..10).map(order).collect();
+    assert!(orders.len() > 1, "the order depends on the seed");
+}
+
+#[test]
+fn random_order_applies_one_acting_rule() {
+    let src = "main module { program [order=random] {
+            if true then print(a). if true then print(b). if true then print(c). } }";
+    let mut seen = std::collections::BTreeSet::new();
+    for seed in 0..10 {
+        let out = agent_with(src, "x", &[], seed).step(&[], &[]);
+        assert_eq!(out.printed.len(), 1);
+        seen.insert(out.printed[0].clone());
+    }
+    assert!(seen.len() > 1);
+}
+
+#[test]
+fn adaptive_runs_as_random_with_a_warning() {
+    let p = program("main module { program [order=adaptive] { if true then print(a). } }");
+    assert!(p.warnings.iter().any(|w| w.message.contains("adaptive")));
+    let mut a = goal::agent::Agent::new(p, "a", Default::default());
+    assert_eq!(a.step(&[], &[]).printed, ["a"]);
+}
+
+#[test]
+fn self_adopt_goes_to_the_top_level_goal_base() {
+    let mut a = agent(
+        "main module { program { if true then sub + exit-module. } }
+         module sub [focus=new] { program {
+            if true then self.adopt(later) + adopt(here). } }",
+    );
+    run(&mut a, 3);
+    assert_eq!(goals(&a), ["later"], "the focused goal base was popped");
+}
+
+#[test]
+fn an_unbound_variable_in_a_send_selector_is_a_runtime_error() {
+    let mut a = agent("main module { program { if bel(me(M)) then (Who).send(hi). } }");
+    match a.step(&[], &[]).stopped {
+        Some(StopReason::Error(e)) => {
+            assert!(e.message.contains("selector not bound"), "{e}")
+        }
+        other => panic!("expected an error, got {other:?}"),
+    }
+}
+
+#[test]
+fn exit_module_in_a_called_module_ends_only_that_module() {
+    let mut a = agent(
+        "main module { program { if true then sub + print(back). } }
+         module sub [exit=never] { program { if true then exit-module. } }",
+    );
+    assert_eq!(a.step(&[], &[]).printed, ["back"]);
+    assert!(a.stopped().is_none());
+}
