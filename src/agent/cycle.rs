@@ -262,7 +262,7 @@ impl Agent {
             self.main_entered = true;
             let f = core
                 .enter(&prog, prog.main, &[], None)
-                .map_err(|e| core.error(&prog, None, e))?;
+                .map_err(|e| core.module_error(&prog, prog.main, e))?;
             self.main.push(Frame::Module(f));
         }
         match core.run(&prog, &mut self.main, true)? {
@@ -279,7 +279,7 @@ impl Agent {
         let core = &mut self.core;
         let f = core
             .enter(prog, idx, &[], None)
-            .map_err(|e| core.error(prog, None, e))?;
+            .map_err(|e| core.module_error(prog, idx, e))?;
         let mut stack = vec![Frame::Module(f)];
         core.run(prog, &mut stack, false)?;
         Ok(())
