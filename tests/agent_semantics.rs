@@ -744,10 +744,10 @@ fn bel_conjunctions_with_negation_keep_prolog_answers_and_order() {
     let mut a = agent(
         "init module { knowledge { odd(X) :- 1 is X mod 2. }
                        beliefs { p(4). p(1). p(3). p(2). q(2). r(3, a). s(1, b). s(4, c). } }
-         main module { program {
+         event module { program {
             forall bel(p(X), not(q(X)), \\+ r(X, _), s(X, Y), not(odd(X))) do print(X/Y).
-            forall bel(p(X), !, not(q(X))) do print(cut(X)).
-            if true then exit-module. } }",
+            forall bel(p(X), !, not(q(X))) do print(cut(X)). } }
+         main module { program { if true then exit-module. } }",
     );
-    assert_eq!(a.step(&[], &[]).printed, ["4/c", "cut(4)"]);
+    assert_eq!(step(&mut a, &["tick"], &[]).printed, ["4/c", "cut(4)"]);
 }
