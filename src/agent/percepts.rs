@@ -85,14 +85,19 @@ impl PerceptBase {
     }
 
     /// Applies one batch according to the types.
-    pub fn apply(&mut self, batch: &[Term], types: &PerceptTypes) -> PerceptChanges {
+    pub fn apply(
+        &mut self,
+        batch: &[Term],
+        types: &PerceptTypes,
+        keep_batch: bool,
+    ) -> PerceptChanges {
         let mut ch = PerceptChanges::default();
         if !self.batch.is_empty() {
             self.batch.clear();
         }
         static NEWPERCEPT: OnceLock<Sym> = OnceLock::new();
         let newpercept = *NEWPERCEPT.get_or_init(|| Sym::intern("newpercept"));
-        for p in batch {
+        for p in batch.iter().filter(|_| keep_batch) {
             self.batch
                 .insert(Term::compound(newpercept, vec![p.clone()]));
         }
