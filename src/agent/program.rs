@@ -1,0 +1,196 @@
+//! A compiled agent program: modules, rule blocks, action specs and knowledge, built once from
+//! the AST and shared (via `Arc`) by every agent that runs it.
+
+use super::kr_bridge::Knowledge;
+use crate::diag::{line_col, Diagnostic};
+use crate::syntax::ast::{self, ExitCondition, Focus, MentalOp, Mood, Order};
+use crate::term::{Sym, Term};
+use std::sync::Arc;
+
+/// Which kind of module.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModuleKind {
+    Init,
+    Main,
+    Event,
+    User,
+}
+
+/// A module ready to run.
+#[derive(Clone, Debug)]
+pub struct ModuleDef {
+    pub name: String,
+    pub kind: ModuleKind,
+    /// Parameter variables.
+    pub params: Vec<Term>,
+    pub exit: ExitCondition,
+    pub focus: Focus,
+    /// Beliefs inserted on entry.
+    pub beliefs: Vec<Term>,
+    /// Goals adopted on entry (parameters substituted).
+    pub goals: Vec<Term>,
+    /// The module's rules (index into `Program::blocks`).
+    pub block: usize,
+    pub line: usize,
+}
+
+/// A list of rules with their evaluation order.
+#[derive(Clone, Debug)]
+pub struct Block {
+    pub rules: Vec<RuleDef>,
+    pub order: Order,
+}
+
+/// The kind of a rule.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RuleKind {
+    If,
+    Forall,
+    /// `listall V <- C do B` with the variable `V`.
+    Listall(Sym),
+}
+
+/// One literal of a condition after macro expansion.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Lit {
+    True,
+    Mental {
+        negated: bool,
+        /// `self.` (top-level goal base) rather than `this.` (current attention set).
+        top_level: bool,
+        op: MentalOp,
+        query: Term,
+    },
+}
+
+/// A rule ready to run.
+#[derive(Clone, Debug)]
+pub struct RuleDef {
+    pub kind: RuleKind,
+    pub cond: Vec<Lit>,
+    pub body: Body,
+    /// `module:line`, used in traces and errors.
+    pub label: Arc<str>,
+    pub line: usize,
+    /// The body calls a `focus=select` module (evaluate the condition per goal).
+    pub per_goal: bool,
+}
+
+/// A rule body.
+#[derive(Clone, Debug)]
+pub enum Body {
+    Combo(Vec<ActionDef>),
+    /// A nested rule block (index into `Program::blocks`).
+    Block(usize),
+}
+
+/// Receivers of a send.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Receivers {
+    All,
+    AllOther,
+    SelfAgent,
+    Agents(Vec<Term>),
+}
+
+/// An action of a combo.
+#[derive(Clone, Debug)]
+pub struct ActionDef {
+    pub kind: Act,
+    pub line: usize,
+}
+
+/// The forms of an action.
+#[derive(Clone, Debug)]
+pub enum Act {
+    Adopt {
+        top_level: bool,
+        content: Term,
+    },
+    Drop(Term),
+    Insert(Term),
+    Delete(Term),
+    Send {
+        to: Receivers,
+        mood: Mood,
+        content: Term,
+        once: bool,
+    },
+    Print(Term),
+    Log(Term),
+    ExitModule,
+    /// Call of a module (index into `Program::modules`).
+    Module {
+        module: usize,
+        args: Vec<Term>,
+    },
+    /// A user action (index into `Program::specs`).
+    Spec {
+        spec: usize,
+        args: Vec<Term>,
+    },
+}
+
+/// A user action specification.
+#[derive(Clone, Debug)]
+pub struct SpecDef {
+    pub name: Sym,
+    /// Parameters (variables renamed apart from rule variables).
+    pub params: Vec<Term>,
+    pub env: bool,
+    pub pre: Term,
+    pub post: Term,
+}
+
+/// A compiled program.
+#[derive(Debug)]
+pub struct Program {
+    pub file: String,
+    pub source: Arc<str>,
+    pub knowledge: Arc<Knowledge>,
+    pub modules: Vec<ModuleDef>,
+    pub blocks: Vec<Block>,
+    pub specs: Vec<SpecDef>,
+    pub init: Option<usize>,
+    pub main: usize,
+    pub event: Option<usize>,
+    /// Warnings found while compiling.
+    pub warnings: Vec<Diagnostic>,
+    /// Some query mentions `newpercept` (so the raw batch must be kept as facts).
+    pub uses_newpercept: bool,
+}
+
+impl Program {
+    /// 1-based line of a byte offset in the program source.
+    pub fn line(&self, offset: usize) -> usize {
+        line_col(&self.source, offset).0
+    }
+
+    /// Parses and compiles `.goal` text; syntax or compile errors are returned as diagnostics.
+    pub fn from_source(file: &str, source: &str) -> Result<Arc<Program>, Vec<Diagnostic>> {
+        let (ast, diags) = crate::syntax::goal::parse_goal(file, source);
+        if diags.iter().any(Diagnostic::is_error) {
+            return Err(diags);
+        }
+        let mut p = Program::compile(&ast, source)?;
+        if let Some(prog) = Arc::get_mut(&mut p) {
+            prog.warnings.splice(0..0, diags);
+        }
+        Ok(p)
+    }
+
+    /// Compiles a parsed program.
+    pub fn compile(ast: &ast::AgentProgram, source: &str) -> Result<Arc<Program>, Vec<Diagnostic>> {
+        Program::compile_with(ast, source, &[])
+    }
+
+    /// Compiles a parsed program with extra knowledge clauses (e.g. from imported `.pl` files,
+    /// which the caller reads: the agent layer does no I/O).
+    pub fn compile_with(
+        ast: &ast::AgentProgram,
+        source: &str,
+        extra_knowledge: &[Term],
+    ) -> Result<Arc<Program>, Vec<Diagnostic>> {
+        super::compile::compile(ast, source, extra_knowledge)
+    }
+}
