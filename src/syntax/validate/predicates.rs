@@ -190,8 +190,11 @@ pub fn check(ctx: &mut Ctx<'_>) {
         return; // queries may be in the importing program
     }
     let queried = |k: &Key| u.queried.contains_key(k);
+    // Blind commitment queries every goal with `bel(...)`, so a predicate used in a goal is
+    // queried (`goals { done. }` with `done :- ...` in knowledge).
+    let in_goal = |k: &Key| u.goals.contains_key(k) || u.adopted.contains_key(k);
     for (k, span) in u.knowledge.iter().chain(u.beliefs.iter()) {
-        if !queried(k) {
+        if !queried(k) && !in_goal(k) {
             ctx.warning(
                 "W0110",
                 format!("`{}/{}` is defined but never queried", k.0, k.1),
