@@ -1,5 +1,14 @@
 //! `goal prolog FILE.pl... -q QUERY`: query a knowledge base from the shell.
+//!
+//! Prints one line per answer: the query's named variables (not starting with `_`) in order of
+//! first appearance as `Name = value` joined by `, ` (values as `writeq` writes them, unbound
+//! variables as `_`), `true` for an answer of a query without named variables, `false` when there
+//! is no answer, and a line starting with `error` when the query raises an error.
 
+use goal::diag::Diagnostic;
+use goal::syntax::prolog::{Located, Reader};
+use goal::term::{Subst, Sym, Term};
+use std::io::{self, BufRead, IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -14,7 +23,258 @@ pub struct Args {
 }
 
 /// Runs `goal prolog`.
-pub fn main(_args: Args) -> ExitCode {
-    eprintln!("goal prolog: the Prolog engine is not built yet (issue 3)");
-    ExitCode::from(2)
+pub fn main(args: Args) -> ExitCode {
+    let kb = match load_files(&args.files) {
+        Ok(kb) => kb,
+        Err(()) => return ExitCode::from(1),
+    };
+    let stdout = io::stdout();
+    let mut out = stdout.lock();
+    match &args.query {
+        Some(q) => match run_query(&kb, q, "<query>", &mut out) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(()) => ExitCode::from(1),
+        },
+        None => repl(&kb, &mut out),
+    }
+}
+
+/// Reads queries from standard input, one per line; a prompt only when stdin is a terminal.
+fn repl(kb: &engine::Kb, out: &mut impl Write) -> ExitCode {
+    let stdin = io::stdin();
+    let interactive = stdin.is_terminal();
+    let mut status = ExitCode::SUCCESS;
+    let mut lines = stdin.lock().lines();
+    loop {
+        if interactive {
+            let _ = write!(out, "?- ");
+            let _ = out.flush();
+        }
+        let line = match lines.next() {
+            Some(Ok(line)) => line,
+            Some(Err(e)) => {
+                eprintln!("error: cannot read standard input: {e}");
+                return ExitCode::from(1);
+            }
+            None => break,
+        };
+        let text = line.trim();
+        if text.is_empty() || text.starts_with('%') {
+            continue;
+        }
+        if run_query(kb, text, "<stdin>", out).is_err() {
+            status = ExitCode::from(1);
+        }
+    }
+    status
+}
+
+/// Loads and compiles the files; prints diagnostics to stderr. `Err` when anything failed.
+fn load_files(files: &[PathBuf]) -> Result<engine::Kb, ()> {
+    let mut sources: Vec<(String, String, Vec<Located>)> = Vec::new();
+    let mut failed = false;
+    for path in files {
+        let name = path.display().to_string();
+        let text = match std::fs::read_to_string(path) {
+            Ok(t) => t,
+            Err(e) => {
+                eprintln!("error: cannot read {name}: {e}");
+                failed = true;
+                continue;
+            }
+        };
+        let (clauses, diags) = Reader::new(name.clone()).clauses(&text, 0);
+        for d in &diags {
+            eprint!("{}", d.render(&text));
+            failed |= d.is_error();
+        }
+        sources.push((name, text, clauses));
+    }
+    if failed {
+        return Err(());
+    }
+    let clauses: Vec<Term> = sources
+        .iter()
+        .flat_map(|(_, _, cs)| cs.iter().map(|c| c.term.clone()))
+        .collect();
+    engine::Kb::load(&clauses).map_err(|errors| {
+        for (index, message) in errors {
+            // Point at the clause in its file when the loader names one.
+            let mut k = index;
+            let located = sources.iter().find_map(|(name, text, cs)| {
+                if k < cs.len() {
+                    Some((name, text, &cs[k]))
+                } else {
+                    k -= cs.len();
+                    None
+                }
+            });
+            match located {
+                Some((name, text, c)) => {
+                    let d = Diagnostic::error("E0300", message, name.clone(), c.spans.span.clone());
+                    eprint!("{}", d.render(text));
+                }
+                None => eprintln!("error: {message}"),
+            }
+        }
+    })
+}
+
+/// Reads, runs and prints one query. `Err` when the query text could not be read.
+fn run_query(kb: &engine::Kb, text: &str, file: &str, out: &mut impl Write) -> Result<(), ()> {
+    let text = text.trim();
+    let text = text.strip_suffix('.').unwrap_or(text);
+    let query = match Reader::new(file).term(text, 0) {
+        Ok(located) => located.term,
+        Err(d) => {
+            eprint!("{}", d.render(text));
+            return Err(());
+        }
+    };
+    let vars = named_vars(&query);
+    let (answers, error, output) = kb.solve(&query);
+    if !output.is_empty() {
+        let _ = write!(out, "{output}");
+        if !output.ends_with('\n') {
+            let _ = writeln!(out);
+        }
+    }
+    for a in &answers {
+        let _ = writeln!(out, "{}", answer_line(&vars, a));
+    }
+    match error {
+        Some(e) => {
+            let _ = writeln!(out, "{}", error_line(&e));
+        }
+        None if answers.is_empty() => {
+            let _ = writeln!(out, "false");
+        }
+        None => {}
+    }
+    Ok(())
+}
+
+/// The query's variables that are printed: not starting with `_`, in order of first appearance.
+pub fn named_vars(query: &Term) -> Vec<Sym> {
+    query
+        .vars()
+        .into_iter()
+        .filter(|v| !v.name().starts_with('_'))
+        .collect()
+}
+
+/// One answer line: `X = a, Y = [b,c]`, or `true` when there are no named variables.
+pub fn answer_line(vars: &[Sym], answer: &Subst) -> String {
+    if vars.is_empty() {
+        return "true".into();
+    }
+    vars.iter()
+        .map(|v| {
+            let value = answer.apply(&Term::Var(*v));
+            format!("{} = {}", v.name(), unbound_as_underscore(&value))
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The line for an error: the error term when it is `error(...)`, else `error: Term`.
+pub fn error_line(error: &Term) -> String {
+    let text = error.to_string();
+    if text.starts_with("error") {
+        text
+    } else {
+        format!("error: {text}")
+    }
+}
+
+/// Replaces every variable by `_` (answers show unbound values as `_`).
+fn unbound_as_underscore(t: &Term) -> Term {
+    match t {
+        Term::Var(_) => Term::var("_"),
+        Term::Compound(c) if !t.is_ground() => {
+            Term::compound(c.name, c.args.iter().map(unbound_as_underscore).collect())
+        }
+        other => other.clone(),
+    }
+}
+
+/// The knowledge base behind the command: the native engine with the agents' default limits.
+mod engine {
+    use goal::kr::{Engine, FactBase, Knowledge, KrError, NativeEngine, View};
+    use goal::term::{Subst, Term};
+    use std::cell::RefCell;
+    use std::sync::Arc;
+
+    /// Loaded knowledge and the engine that queries it.
+    pub struct Kb {
+        knowledge: Arc<Knowledge>,
+        engine: RefCell<NativeEngine>,
+    }
+
+    impl Kb {
+        /// Compiles clauses; on failure, (clause index, message) for every rejected clause.
+        pub fn load(clauses: &[Term]) -> Result<Kb, Vec<(usize, String)>> {
+            match Knowledge::load(clauses) {
+                Ok(knowledge) => Ok(Kb {
+                    knowledge,
+                    engine: RefCell::new(NativeEngine::default()),
+                }),
+                Err(KrError::Load(errors)) => {
+                    Err(errors.into_iter().map(|e| (e.clause, e.message)).collect())
+                }
+                Err(e) => Err(vec![(usize::MAX, e.to_string())]),
+            }
+        }
+
+        /// All answers of `query`, the error that stopped it (if any), and the text written by
+        /// output built-ins.
+        pub fn solve(&self, query: &Term) -> (Vec<Subst>, Option<Term>, String) {
+            let empty = FactBase::new();
+            let bases = [&empty];
+            let view = View::beliefs(&self.knowledge, &bases);
+            let mut engine = self.engine.borrow_mut();
+            let mut answers = Vec::new();
+            let result = engine.solve(&view, query, &mut |s| {
+                answers.push(s);
+                true
+            });
+            let output = engine.take_output();
+            (answers, result.err().map(|e| e.to_term()), output)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn answer_lines_name_variables_in_order() {
+        let q = Term::compound(
+            Sym::intern("f"),
+            vec![Term::var("X"), Term::var("_Y"), Term::var("Z")],
+        );
+        let vars = named_vars(&q);
+        let mut s = Subst::new();
+        s.bind(
+            Sym::intern("X"),
+            Term::list(vec![Term::atom("a"), Term::atom("B c")]),
+        );
+        s.bind(
+            Sym::intern("Z"),
+            Term::compound(Sym::intern("g"), vec![Term::var("W")]),
+        );
+        assert_eq!(answer_line(&vars, &s), "X = [a,'B c'], Z = g(_)");
+        assert_eq!(answer_line(&[], &s), "true");
+    }
+
+    #[test]
+    fn error_lines_start_with_error() {
+        let e = Term::compound(
+            Sym::intern("error"),
+            vec![Term::atom("instantiation_error"), Term::var("_")],
+        );
+        assert!(error_line(&e).starts_with("error(instantiation_error"));
+        assert_eq!(error_line(&Term::atom("oops")), "error: oops");
+    }
 }

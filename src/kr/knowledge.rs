@@ -1,0 +1,368 @@
+//! Knowledge: compiled Prolog clauses (facts and rules), shared read-only by every agent that
+//! runs the same program. Loading rejects GOAL's protected predicates and invalid clauses.
+
+use super::error::{KrError, LoadError};
+use super::fxhash::FxHashMap;
+use super::native::builtins::{self, B};
+use super::native::code::{Code, Key};
+use super::native::store::Cell;
+use crate::term::{well_known as wk, Sym, Term};
+use std::sync::Arc;
+
+/// One compiled clause.
+#[derive(Clone, Debug)]
+pub(crate) struct Clause {
+    pub code: Code,
+    pub head: Cell,
+    pub body: Vec<Cell>,
+    pub nslots: u32,
+    pub key: Option<Key>,
+}
+
+/// The clauses of one predicate, with a first-argument index when there are many.
+#[derive(Clone, Debug)]
+pub(crate) struct Pred {
+    pub name: Sym,
+    pub arity: u32,
+    pub clauses: Vec<Clause>,
+    pub all: Vec<u32>,
+    pub by_key: FxHashMap<Key, Vec<u32>>,
+    pub var_first: Vec<u32>,
+}
+
+/// What a goal `name/arity` refers to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum PredRef {
+    /// A built-in implemented in Rust (or a control construct).
+    Builtin(B),
+    /// Clauses of this knowledge (index into `preds`).
+    User(u32),
+    /// Clauses of the library prelude.
+    Lib(u32),
+}
+
+/// Compiled knowledge clauses plus the table resolving every callable name.
+#[derive(Debug, Default)]
+pub struct Knowledge {
+    pub(crate) preds: Vec<Pred>,
+    pub(crate) table: FxHashMap<(Sym, u32), PredRef>,
+    clause_count: usize,
+}
+
+/// Names that GOAL programs may not use as predicates (goal-language.md §3.3).
+const PROTECTED: &[&str] = &[
+    "assert",
+    "asserta",
+    "assertz",
+    "retract",
+    "retractall",
+    "abolish",
+    ":",
+    "dynamic",
+    "multifile",
+    "discontiguous",
+    "op",
+    "char_conversion",
+    "initialization",
+    "ensure_loaded",
+    "module_transparent",
+    "meta_predicate",
+    "thread_local",
+    "volatile",
+    "catch",
+    "throw",
+    "numbervars",
+    "debug",
+    "nodebug",
+    "subsumes_term",
+    "tmp_file_stream",
+    "consult",
+    "use_module",
+    "module",
+    "halt",
+    "set_prolog_flag",
+    "nb_setval",
+    "b_setval",
+    "nb_getval",
+    "b_getval",
+    "recorda",
+    "recordz",
+    "erase",
+    "flag",
+    "predicate_options",
+    "current_predicate_option",
+    "check_predicate_option",
+];
+
+/// True when `name` may not be used as a predicate.
+pub fn is_protected(name: &str) -> bool {
+    PROTECTED.contains(&name) || name.starts_with("csv_")
+}
+
+impl Pred {
+    /// The clause indices that can match a goal whose first argument has key `k`.
+    #[inline]
+    pub fn candidates(&self, k: Option<Key>) -> &[u32] {
+        match k {
+            Some(k) if !self.by_key.is_empty() => match self.by_key.get(&k) {
+                Some(v) => v,
+                None => &self.var_first,
+            },
+            _ => &self.all,
+        }
+    }
+
+    fn index(&mut self) {
+        let n = self.clauses.len();
+        self.all = (0..n as u32).collect();
+        if n < 4 {
+            return;
+        }
+        let mut by_key: FxHashMap<Key, Vec<u32>> = FxHashMap::default();
+        for c in &self.clauses {
+            if let Some(k) = c.key {
+                by_key.entry(k).or_default();
+            }
+        }
+        for (i, c) in self.clauses.iter().enumerate() {
+            match c.key {
+                Some(k) => {
+                    if let Some(v) = by_key.get_mut(&k) {
+                        v.push(i as u32)
+                    }
+                }
+                None => {
+                    self.var_first.push(i as u32);
+                    for v in by_key.values_mut() {
+                        v.push(i as u32)
+                    }
+                }
+            }
+        }
+        self.by_key = by_key;
+    }
+}
+
+/// Splits a clause into head and body.
+fn split_clause(t: &Term) -> (&Term, Option<&Term>) {
+    if t.is_functor(wk::NECK, 2) {
+        (&t.args()[0], Some(&t.args()[1]))
+    } else {
+        (t, None)
+    }
+}
+
+fn pi(name: Sym, arity: usize) -> String {
+    format!("{}/{}", Term::Atom(name), arity)
+}
+
+/// Checks one body goal (and the goals inside control constructs) for protected predicates.
+fn check_body(goal: &Term, errors: &mut Vec<String>) {
+    let mut stack = vec![(goal, false)];
+    while let Some((g, in_bagof)) = stack.pop() {
+        let Some((name, arity)) = g.functor() else {
+            if let Term::Var(_) = g {
+                continue;
+            }
+            errors.push(format!("{g} is not a callable goal"));
+            continue;
+        };
+        let text = name.name();
+        if text == "^" && arity == 2 {
+            if !in_bagof {
+                errors.push(
+                    "the goal form of ^/2 is protected (use it only inside bagof/setof)".into(),
+                );
+                continue;
+            }
+            stack.push((&g.args()[1], true));
+            continue;
+        }
+        if is_protected(text) {
+            errors.push(format!("{} is a protected predicate", pi(name, arity)));
+            continue;
+        }
+        let args = g.args();
+        match (text, arity) {
+            (",", 2) | (";", 2) | ("->", 2) | ("*->", 2) | ("forall", 2) => {
+                stack.push((&args[1], false));
+                stack.push((&args[0], false));
+            }
+            ("\\+", 1) | ("not", 1) | ("once", 1) | ("ignore", 1) | ("call", _) => {
+                stack.push((&args[0], false))
+            }
+            ("findall", 3) | ("findall", 4) | ("aggregate_all", 3) => stack.push((&args[1], false)),
+            ("bagof", 3) | ("setof", 3) | ("aggregate", 3) => stack.push((&args[1], true)),
+            ("aggregate_all", 4) | ("aggregate", 4) => stack.push((&args[2], true)),
+            _ => {}
+        }
+    }
+}
+
+impl Knowledge {
+    /// Compiles knowledge clauses (facts and `Head :- Body` rules). Rejects protected
+    /// predicates, directives and clauses whose head is not an atom or compound term.
+    pub fn load(clauses: &[Term]) -> Result<Arc<Knowledge>, KrError> {
+        let lib = builtins::library();
+        let mut k = Knowledge {
+            preds: Vec::new(),
+            table: lib.table.clone(),
+            clause_count: 0,
+        };
+        let mut errors = Vec::new();
+        for (i, t) in clauses.iter().enumerate() {
+            if let Err(e) = k.add_checked(t, i) {
+                errors.push(e);
+            }
+        }
+        if !errors.is_empty() {
+            return Err(KrError::Load(errors));
+        }
+        k.finish();
+        Ok(Arc::new(k))
+    }
+
+    /// Knowledge without clauses.
+    pub fn empty() -> Arc<Knowledge> {
+        Knowledge::load(&[]).unwrap_or_default()
+    }
+
+    /// Number of clauses loaded.
+    pub fn len(&self) -> usize {
+        self.clause_count
+    }
+
+    /// True when no clauses were loaded.
+    pub fn is_empty(&self) -> bool {
+        self.clause_count == 0
+    }
+
+    /// True when knowledge clauses define `name/arity`.
+    pub fn defines(&self, name: Sym, arity: usize) -> bool {
+        matches!(
+            self.table.get(&(name, arity as u32)),
+            Some(PredRef::User(_))
+        )
+    }
+
+    fn add_checked(&mut self, t: &Term, i: usize) -> Result<(), LoadError> {
+        let err = |predicate: Option<String>, message: String| LoadError {
+            clause: i,
+            predicate,
+            message,
+        };
+        if t.is_functor(wk::NECK, 1) {
+            return Err(err(
+                Some(":-/1".into()),
+                format!("directives are not allowed in knowledge: {t}"),
+            ));
+        }
+        let (head, body) = split_clause(t);
+        let Some((name, arity)) = head.functor() else {
+            return Err(err(
+                None,
+                format!("{head} cannot be the head of a clause (not an atom or compound term)"),
+            ));
+        };
+        if is_protected(name.name()) || (name == wk::CARET && arity == 2) {
+            return Err(err(
+                Some(pi(name, arity)),
+                format!(
+                    "{} is a protected predicate and cannot be defined",
+                    pi(name, arity)
+                ),
+            ));
+        }
+        if let Some(PredRef::Builtin(b)) = self.table.get(&(name, arity as u32)) {
+            if !builtins::is_library(*b) {
+                return Err(err(
+                    Some(pi(name, arity)),
+                    format!(
+                        "{} is a built-in predicate and cannot be redefined",
+                        pi(name, arity)
+                    ),
+                ));
+            }
+        }
+        if let Some(b) = body {
+            let mut problems = Vec::new();
+            check_body(b, &mut problems);
+            if let Some(p) = problems.into_iter().next() {
+                return Err(err(
+                    Some(pi(name, arity)),
+                    format!("in a clause of {}: {p}", pi(name, arity)),
+                ));
+            }
+        }
+        self.add(t);
+        Ok(())
+    }
+
+    /// Adds a clause without checks (used for the library prelude).
+    pub(crate) fn add(&mut self, t: &Term) {
+        let (head, body) = split_clause(t);
+        let Some((name, arity)) = head.functor() else {
+            return;
+        };
+        let arity = arity as u32;
+        let idx = match self.table.get(&(name, arity)) {
+            Some(PredRef::User(i)) => *i,
+            _ => {
+                self.preds.push(Pred {
+                    name,
+                    arity,
+                    clauses: Vec::new(),
+                    all: Vec::new(),
+                    by_key: FxHashMap::default(),
+                    var_first: Vec::new(),
+                });
+                let i = self.preds.len() as u32 - 1;
+                self.table.insert((name, arity), PredRef::User(i));
+                i
+            }
+        };
+        let mut code = Code::default();
+        let mut vars = Vec::new();
+        let head_cell = code.add(head, &mut vars);
+        let mut body_cells = Vec::new();
+        if let Some(b) = body {
+            for g in b.conjuncts() {
+                if g.is_functor(wk::TRUE, 0) {
+                    continue;
+                }
+                let g = if let Term::Var(_) = g {
+                    Term::compound(wk::CALL, vec![g.clone()])
+                } else {
+                    g.clone()
+                };
+                body_cells.push(code.add(&g, &mut vars));
+            }
+        }
+        let key = head.args().first().and_then(Key::of_term);
+        self.preds[idx as usize].clauses.push(Clause {
+            code,
+            head: head_cell,
+            body: body_cells,
+            nslots: vars.len() as u32,
+            key,
+        });
+        self.clause_count += 1;
+    }
+
+    /// Builds the indexes; call after the last `add`.
+    pub(crate) fn finish(&mut self) {
+        for p in &mut self.preds {
+            p.index();
+        }
+    }
+
+    /// Turns every user predicate into a library predicate (for the prelude).
+    pub(crate) fn into_library(mut self) -> Knowledge {
+        for v in self.table.values_mut() {
+            if let PredRef::User(i) = *v {
+                *v = PredRef::Lib(i);
+            }
+        }
+        self
+    }
+}

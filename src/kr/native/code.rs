@@ -1,0 +1,304 @@
+//! Compiled terms: a term flattened into cells with numbered variable slots, used for knowledge
+//! clauses and for the copies `findall/3` keeps. Heads are unified against heap goals without
+//! copying them; bodies are built on the heap when a clause is used.
+
+use super::store::{Cell, Store};
+use crate::term::{well_known as wk, Sym, Term};
+use std::sync::Arc;
+
+/// Marks a variable slot that is not bound yet in a slot array.
+pub(crate) const UNSET: Cell = Cell::Ref(u32::MAX);
+
+/// Flattened terms. Inside a `Code`, `Ref(n)` is variable slot `n`, `Ptr(o)` is the offset of a
+/// `Fun` header in `cells`, and `Str(i)` indexes `strs`.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Code {
+    pub cells: Vec<Cell>,
+    pub strs: Vec<Arc<str>>,
+}
+
+/// First-argument key of a clause or goal, for indexing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) enum Key {
+    Atom(Sym),
+    Int(i64),
+    Flt(u64),
+    Str,
+    Fun(Sym, u32),
+}
+
+impl Key {
+    /// The key of a term (`None` for a variable).
+    pub fn of_term(t: &Term) -> Option<Key> {
+        Some(match t {
+            Term::Atom(s) => Key::Atom(*s),
+            Term::Int(i) => Key::Int(*i),
+            Term::Float(f) => Key::Flt(if f.0 == 0.0 { 0 } else { f.0.to_bits() }),
+            Term::Str(_) => Key::Str,
+            Term::Compound(c) => Key::Fun(c.name, c.args.len() as u32),
+            Term::Var(_) => return None,
+        })
+    }
+
+    /// The key of a dereferenced heap cell (`None` for a variable).
+    #[inline]
+    pub fn of_cell(store: &Store, c: Cell) -> Option<Key> {
+        Some(match store.deref(c) {
+            Cell::Atom(s) => Key::Atom(s),
+            Cell::Int(i) => Key::Int(i),
+            Cell::Flt(f) => Key::Flt(if f == 0.0 { 0 } else { f.to_bits() }),
+            Cell::Str(_) => Key::Str,
+            Cell::Ptr(p) => match store.heap[p as usize] {
+                Cell::Fun(s, n) => Key::Fun(s, n),
+                _ => return None,
+            },
+            _ => return None,
+        })
+    }
+}
+
+impl Code {
+    /// Appends `t`, numbering its variables through `vars`; returns the root cell.
+    pub fn add(&mut self, t: &Term, vars: &mut Vec<Sym>) -> Cell {
+        let mut root = UNSET;
+        let mut work: Vec<(Option<usize>, &Term)> = vec![(None, t)];
+        while let Some((slot, t)) = work.pop() {
+            let c = match t {
+                Term::Atom(s) => Cell::Atom(*s),
+                Term::Int(i) => Cell::Int(*i),
+                Term::Float(f) => Cell::Flt(f.0),
+                Term::Str(s) => {
+                    self.strs.push(s.clone());
+                    Cell::Str(self.strs.len() as u32 - 1)
+                }
+                Term::Var(v) => {
+                    let n = if *v == wk::UNDERSCORE {
+                        vars.push(*v);
+                        vars.len() - 1
+                    } else {
+                        match vars.iter().position(|x| x == v) {
+                            Some(n) => n,
+                            None => {
+                                vars.push(*v);
+                                vars.len() - 1
+                            }
+                        }
+                    };
+                    Cell::Ref(n as u32)
+                }
+                Term::Compound(c) => {
+                    let p = self.cells.len();
+                    self.cells.push(Cell::Fun(c.name, c.args.len() as u32));
+                    for (i, a) in c.args.iter().enumerate() {
+                        self.cells.push(UNSET);
+                        work.push((Some(p + 1 + i), a));
+                    }
+                    Cell::Ptr(p as u32)
+                }
+            };
+            match slot {
+                Some(s) => self.cells[s] = c,
+                None => root = c,
+            }
+        }
+        root
+    }
+
+    /// Copies a heap term into this code (variables numbered through `vars`, by address).
+    pub fn add_cell(&mut self, store: &Store, c: Cell, vars: &mut Vec<u32>) -> Cell {
+        let mut root = UNSET;
+        let mut work: Vec<(Option<usize>, Cell)> = vec![(None, c)];
+        while let Some((slot, c)) = work.pop() {
+            let v = match store.deref(c) {
+                Cell::Ref(a) => {
+                    let n = match vars.iter().position(|x| *x == a) {
+                        Some(n) => n,
+                        None => {
+                            vars.push(a);
+                            vars.len() - 1
+                        }
+                    };
+                    Cell::Ref(n as u32)
+                }
+                Cell::Str(i) => {
+                    self.strs.push(store.strs[i as usize].clone());
+                    Cell::Str(self.strs.len() as u32 - 1)
+                }
+                Cell::Ptr(p) => {
+                    let Cell::Fun(f, n) = store.heap[p as usize] else {
+                        continue;
+                    };
+                    let q = self.cells.len();
+                    self.cells.push(Cell::Fun(f, n));
+                    for i in 0..n {
+                        self.cells.push(UNSET);
+                        work.push((Some(q + 1 + i as usize), store.arg(p, i)));
+                    }
+                    Cell::Ptr(q as u32)
+                }
+                other => other,
+            };
+            match slot {
+                Some(s) => self.cells[s] = v,
+                None => root = v,
+            }
+        }
+        root
+    }
+
+    /// Builds the code term `root` on the heap, binding unset slots to fresh variables.
+    pub fn build(&self, store: &mut Store, root: Cell, slots: &mut [Cell]) -> Cell {
+        match root {
+            Cell::Ref(n) => {
+                let s = &mut slots[n as usize];
+                if let Cell::Ref(u32::MAX) = *s {
+                    *s = store.new_var();
+                }
+                *s
+            }
+            Cell::Str(i) => store.new_str(self.strs[i as usize].clone()),
+            Cell::Ptr(off) => {
+                let base = store.heap.len() as u32;
+                let mut work = std::mem::take(&mut store.build_work);
+                work.clear();
+                work.push((base, off));
+                store.heap.push(UNSET);
+                while let Some((dst, off)) = work.pop() {
+                    let Cell::Fun(f, n) = self.cells[off as usize] else {
+                        continue;
+                    };
+                    let p = store.heap.len() as u32;
+                    store.heap.push(Cell::Fun(f, n));
+                    store.heap[dst as usize] = Cell::Ptr(p);
+                    for i in 0..n {
+                        let a = p + 1 + i;
+                        let c = match self.cells[(off + 1 + i) as usize] {
+                            Cell::Ref(k) => {
+                                let s = &mut slots[k as usize];
+                                if let Cell::Ref(u32::MAX) = *s {
+                                    *s = Cell::Ref(a);
+                                }
+                                *s
+                            }
+                            Cell::Str(j) => {
+                                store.strs.push(self.strs[j as usize].clone());
+                                Cell::Str(store.strs.len() as u32 - 1)
+                            }
+                            Cell::Ptr(o) => {
+                                work.push((a, o));
+                                UNSET
+                            }
+                            other => other,
+                        };
+                        store.heap.push(c);
+                    }
+                }
+                store.build_work = work;
+                store.heap[base as usize]
+            }
+            other => other,
+        }
+    }
+
+    /// Unifies code term `code` with heap term `heap`, binding slots on first sight.
+    pub fn unify(&self, store: &mut Store, code: Cell, heap: Cell, slots: &mut [Cell]) -> bool {
+        let mut work = std::mem::take(&mut store.code_pairs);
+        work.clear();
+        let ok = self.unify_with(store, code, heap, slots, &mut work);
+        store.code_pairs = work;
+        ok
+    }
+
+    fn unify_with(
+        &self,
+        store: &mut Store,
+        code: Cell,
+        heap: Cell,
+        slots: &mut [Cell],
+        work: &mut Vec<(Cell, Cell)>,
+    ) -> bool {
+        let (mut code, mut heap) = (code, heap);
+        loop {
+            match code {
+                Cell::Ref(n) => {
+                    let s = slots[n as usize];
+                    if let Cell::Ref(u32::MAX) = s {
+                        slots[n as usize] = heap;
+                    } else if !store.unify(s, heap) {
+                        return false;
+                    }
+                }
+                Cell::Ptr(off) => {
+                    let Cell::Fun(f, n) = self.cells[off as usize] else {
+                        return false;
+                    };
+                    match store.deref(heap) {
+                        Cell::Ref(a) => {
+                            let t = self.build(store, code, slots);
+                            if store.occurs_check && store.occurs(a, t) {
+                                return false;
+                            }
+                            store.bind(a, t);
+                        }
+                        Cell::Ptr(p) => {
+                            if store.heap[p as usize].fun() != Some((f, n)) {
+                                return false;
+                            }
+                            for i in (1..n).rev() {
+                                work.push((self.cells[(off + 1 + i) as usize], store.arg(p, i)));
+                            }
+                            code = self.cells[(off + 1) as usize];
+                            heap = store.arg(p, 0);
+                            continue;
+                        }
+                        _ => return false,
+                    }
+                }
+                Cell::Str(i) => match store.deref(heap) {
+                    Cell::Ref(a) => {
+                        let c = store.new_str(self.strs[i as usize].clone());
+                        store.bind(a, c);
+                    }
+                    Cell::Str(j) => {
+                        if store.strs[j as usize] != self.strs[i as usize] {
+                            return false;
+                        }
+                    }
+                    _ => return false,
+                },
+                atomic => match store.deref(heap) {
+                    Cell::Ref(a) => store.bind(a, atomic),
+                    h => {
+                        let same = match (atomic, h) {
+                            (Cell::Atom(x), Cell::Atom(y)) => x == y,
+                            (Cell::Int(x), Cell::Int(y)) => x == y,
+                            (Cell::Flt(x), Cell::Flt(y)) => x == y || x.to_bits() == y.to_bits(),
+                            _ => false,
+                        };
+                        if !same {
+                            return false;
+                        }
+                    }
+                },
+            }
+            match work.pop() {
+                Some((c, h)) => {
+                    code = c;
+                    heap = h;
+                }
+                None => return true,
+            }
+        }
+    }
+}
+
+impl Cell {
+    /// The functor of a `Fun` header cell.
+    #[inline]
+    pub fn fun(self) -> Option<(Sym, u32)> {
+        match self {
+            Cell::Fun(s, n) => Some((s, n)),
+            _ => None,
+        }
+    }
+}

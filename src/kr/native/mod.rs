@@ -1,0 +1,145 @@
+//! The native Prolog engine: a binding store (`store`), compiled clauses (`code`), the iterative
+//! solver (`machine`) and the built-ins (`builtins`, `arith`, `text`, `lists`, `output`,
+//! `prelude`).
+
+pub(crate) mod arith;
+pub(crate) mod builtins;
+pub(crate) mod code;
+pub(crate) mod lists;
+pub(crate) mod machine;
+pub(crate) mod output;
+pub(crate) mod prelude;
+pub(crate) mod store;
+pub(crate) mod text;
+
+use super::error::{KrResult, Limits};
+use super::{Engine, View};
+use crate::term::{Subst, Term};
+use machine::{Ctx, Machine, Solver};
+use rand_chacha::rand_core::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use std::cell::RefCell;
+
+thread_local! {
+    /// The solver buffers, reused by every query on this thread (agents stay small).
+    static MACHINE: RefCell<Machine> = RefCell::new(Machine::default());
+}
+
+/// The native engine's per-agent state: limits, options, the seeded RNG and the output buffer.
+#[derive(Clone, Debug)]
+pub struct NativeEngine {
+    /// Resource limits applied to every query.
+    pub limits: Limits,
+    /// Unify with the occurs check (off by default, as in Prolog systems).
+    pub occurs_check: bool,
+    rng: ChaCha8Rng,
+    output: String,
+}
+
+impl NativeEngine {
+    /// An engine whose `random/1` and friends draw from a ChaCha8 RNG seeded with `seed`.
+    pub fn new(seed: u64) -> NativeEngine {
+        NativeEngine {
+            limits: Limits::default(),
+            occurs_check: false,
+            rng: ChaCha8Rng::seed_from_u64(seed),
+            output: String::new(),
+        }
+    }
+
+    /// The same engine with other limits.
+    pub fn with_limits(mut self, limits: Limits) -> NativeEngine {
+        self.limits = limits;
+        self
+    }
+
+    /// Runs `query`, handing each answer to `each` until it returns false or answers run out.
+    /// Returns the number of answers produced.
+    pub fn solve(
+        &mut self,
+        view: &View,
+        query: &Term,
+        each: &mut dyn FnMut(Subst) -> bool,
+    ) -> KrResult<usize> {
+        let lib = builtins::library();
+        let mut run = |m: &mut Machine| -> KrResult<usize> {
+            let cx = Ctx {
+                kn: view.knowledge,
+                lib,
+                bases: view.bases,
+                goal_facts: view.goal_facts,
+                limits: self.limits,
+                rng: &mut self.rng,
+                out: &mut self.output,
+            };
+            let mut s = Solver::new(m, cx, query, self.occurs_check);
+            let mut n = 0;
+            let mut first = true;
+            while s.next(first)? {
+                first = false;
+                n += 1;
+                if !each(s.answer()) {
+                    break;
+                }
+            }
+            Ok(n)
+        };
+        MACHINE.with(|cell| match cell.try_borrow_mut() {
+            Ok(mut m) => run(&mut m),
+            Err(_) => run(&mut Machine::default()),
+        })
+    }
+
+    /// True when `query` has at least one answer (stops after the first).
+    fn first(&mut self, view: &View, query: &Term) -> KrResult<bool> {
+        // Fast path: a ground fact that no clause or built-in defines.
+        if query.is_ground() {
+            if let Some((name, arity)) = query.functor() {
+                if !view.knowledge.table.contains_key(&(name, arity as u32)) {
+                    return Ok(view.bases.iter().any(|b| b.contains(query))
+                        || view.goal_facts.iter().any(|f| f == query));
+                }
+            }
+        }
+        let mut found = false;
+        self.solve(view, query, &mut |_| {
+            found = true;
+            false
+        })?;
+        Ok(found)
+    }
+}
+
+impl Default for NativeEngine {
+    fn default() -> NativeEngine {
+        NativeEngine::new(0)
+    }
+}
+
+impl Engine for NativeEngine {
+    fn query(&mut self, view: &View, query: &Term) -> KrResult<Vec<Subst>> {
+        let mut out = Vec::new();
+        self.solve(view, query, &mut |s| {
+            out.push(s);
+            true
+        })?;
+        Ok(out)
+    }
+
+    fn query_first(&mut self, view: &View, query: &Term) -> KrResult<Option<Subst>> {
+        let mut out = None;
+        self.solve(view, query, &mut |s| {
+            out = Some(s);
+            false
+        })?;
+        Ok(out)
+    }
+
+    fn holds(&mut self, view: &View, query: &Term) -> KrResult<bool> {
+        self.first(view, query)
+    }
+
+    fn take_output(&mut self) -> String {
+        std::mem::take(&mut self.output)
+    }
+}

