@@ -1,1 +1,310 @@
 //! The Blocks World for Teams environment: maps, world, navigation, percepts and actions.
+//!
+//! Robots (entities `Bot1`, `Bot2`, ... in spawn order) walk between zones, pick up coloured
+//! blocks in rooms and deliver them to the drop zone in the order of the map's colour sequence.
+//! [`Bw4t`] implements [`crate::env::Environment`]; run it on its own thread with
+//! [`crate::env::thread::EnvHandle`]. Maps are TOML files ([`map`]), built in by name
+//! ([`map::builtin`]) or imported from BW4T XML ([`xml::import`]). Behaviour follows the seed
+//! (the BW4T3 agent-environment interface) and `spec/bw4t.md`.
+//!
+//! Time is ticks. Within a tick, robots move in entity order: 0.25 units per tick at the
+//! default speed, one idle tick at every waypoint, arrival tolerance 0.001. Actions take effect
+//! between ticks (the caller decides when: see [`crate::env::thread`]).
+//!
+//! ## Not there yet
+//! * robot collisions, the `bumped` percept and `navigateObstacles` (the action fails with a
+//!   message saying so; robots pass through each other in corridors, as in BW4T with
+//!   collisions off, its default);
+//! * human-controlled robots and their GUI percepts; e-partners and their actions/percepts;
+//! * the size-overload/speed handicaps are plain settings ([`RobotConfig`]) rather than BW4T
+//!   bot-configuration files.
+//!
+//! ## Deliberate deviations from the Java implementation (BW4T 3.10.1)
+//! * Percept types follow the seed: `in`, `atBlock`, `occupied`, `holding`, `player` are
+//!   on-change-with-negation and produce `not(p)` when `p` stops holding; once-percepts only in
+//!   the first batch; on-change percepts re-send all instances of the predicate on any change.
+//! * `message(Sender, Content)` has the seed's two arguments (Java: one list) and is an
+//!   always-percept of the messages received since the last batch (drained on reading);
+//!   `sendMessage(all, M)` reaches every *other* robot; content may be any term.
+//! * Colours are the seed's nine plus `DarkGray` (Java: `Dark_gray`), seen by colour-blind robots.
+//! * Entities are `Bot1, Bot2, ...` (Java: `Bot_1`); asking for more robots than spawn points
+//!   creates none of the extra ones (a warning), instead of killing the spawn thread.
+//! * A block put down in a room lands within 0.5 of the robot (Java: anywhere in the room).
+//! * Delivery needs the robot's centre in the drop zone (Java: any overlap of the robot's box).
+//! * `pickUp` out of reach, with a full gripper or without grippers fails with a message (Java:
+//!   silently nothing); `atBlock` only lists blocks in the robot's own zone (Java: through walls).
+//! * Visibility for `pickUp`/`goToBlock` uses the current position (Java: the position at the
+//!   last perceive call).
+//! * `position` percepts are off by default for every robot (init parameter
+//!   `positionPercepts`), and list the robot itself, robots and free blocks in its zone.
+//! * Robots update in entity order (Java: Repast's shuffle); shortest routes with equal length
+//!   are chosen by map file order; random content comes from one ChaCha generator per run, and
+//!   blocks get ids in map file order (Java: `HashMap` order).
+//! * The end of the game is reported ([`crate::env::Environment::is_finished`], statistics);
+//!   the simulation keeps running afterwards as in Java.
+//! * Maps with dangling neighbour names, blocks outside rooms, overlapping spawn points or doors
+//!   off their room are rejected with diagnostics (Java: ignores or crashes).
+
+pub mod actions;
+pub mod color;
+pub mod geometry;
+pub mod greedy;
+pub mod map;
+pub mod messages;
+pub mod motion;
+pub mod nav;
+pub mod percepts;
+pub mod stats;
+pub mod world;
+pub mod xml;
+
+pub use color::Color;
+pub use map::Map;
+pub use stats::{RobotStats, RunStats};
+pub use world::{RobotConfig, RobotState, World};
+
+use crate::diag::Diagnostic;
+use crate::env::{ActionResult, EntityInfo, Environment, InitParams, PerceptDecl};
+use crate::term::Term;
+
+/// How to set up a run besides the map.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bw4tConfig {
+    /// Seed for random content (maps without their own seed, drop placement).
+    pub seed: u64,
+    /// Number of robots; `None` = one per spawn point.
+    pub robots: Option<usize>,
+    /// Settings of every robot.
+    pub robot: RobotConfig,
+    /// Names of robots that are colour-blind (besides `robot.colorblind`).
+    pub colorblind: Vec<String>,
+    /// Overrides the map's `one_bot_per_corridor_zone`.
+    pub one_bot_per_corridor_zone: Option<bool>,
+    /// Send `position` percepts.
+    pub position_percepts: bool,
+}
+
+impl Default for Bw4tConfig {
+    fn default() -> Self {
+        Bw4tConfig {
+            seed: 0,
+            robots: None,
+            robot: RobotConfig::default(),
+            colorblind: Vec::new(),
+            one_bot_per_corridor_zone: None,
+            position_percepts: false,
+        }
+    }
+}
+
+/// The init parameters [`Bw4t::from_params`] understands.
+pub const INIT_PARAMS: &[&str] = &[
+    "map",
+    "seed",
+    "robots",
+    "gripperCapacity",
+    "colorblind",
+    "battery",
+    "speed",
+    "size",
+    "oneBotPerCorridorZone",
+    "positionPercepts",
+];
+
+/// The BW4T environment.
+#[derive(Clone, Debug)]
+pub struct Bw4t {
+    world: World,
+    positions: bool,
+    warnings: Vec<String>,
+}
+
+impl Bw4t {
+    /// A run on `map` (already checked) with `config`.
+    pub fn new(map: &Map, config: &Bw4tConfig) -> Bw4t {
+        let mut world = World::new(map, config.seed);
+        if let Some(v) = config.one_bot_per_corridor_zone {
+            world.one_bot_per_corridor_zone = v;
+        }
+        let wanted = config.robots.unwrap_or(map.spawns.len());
+        let mut warnings = Vec::new();
+        for i in 0..wanted {
+            let mut rc = config.robot.clone();
+            if config
+                .colorblind
+                .iter()
+                .any(|n| *n == format!("Bot{}", i + 1))
+            {
+                rc.colorblind = true;
+            }
+            if let Err(e) = world.spawn(rc) {
+                warnings.push(format!("{e}: {} robot(s) not created", wanted - i));
+                break;
+            }
+        }
+        world.stats.map = map.name.clone();
+        world.stats.sequence_length = world.sequence.len();
+        Bw4t {
+            world,
+            positions: config.position_percepts,
+            warnings,
+        }
+    }
+
+    /// A run set up from init parameters (`map` = built-in name or file, `seed`, `robots`,
+    /// `gripperCapacity`, `colorblind` = true/false or a list of names, `battery` = capacity,
+    /// `speed`, `size`, `oneBotPerCorridorZone`, `positionPercepts`).
+    pub fn from_params(params: &InitParams) -> Result<Bw4t, Vec<Diagnostic>> {
+        let bad = |key: &str, want: &str, got: &Term| {
+            vec![Diagnostic::error(
+                "M0020",
+                format!("init parameter `{key}` must be {want}, got `{got}`"),
+                "init",
+                0..0,
+            )]
+        };
+        let mut cfg = Bw4tConfig::default();
+        let mut map_name = map::DEFAULT_MAP.to_string();
+        for (key, v) in params {
+            let num = match v {
+                Term::Int(i) => Some(*i as f64),
+                Term::Float(f) if f.0.is_finite() => Some(f.0),
+                _ => None,
+            };
+            let flag = match v {
+                Term::Atom(s) if s.name() == "true" => Some(true),
+                Term::Atom(s) if s.name() == "false" => Some(false),
+                _ => None,
+            };
+            match key.as_str() {
+                "map" => match v {
+                    Term::Atom(s) => map_name = s.name().to_string(),
+                    Term::Str(s) => map_name = s.to_string(),
+                    _ => return Err(bad(key, "a map name or file", v)),
+                },
+                "seed" => match v {
+                    Term::Int(i) => cfg.seed = *i as u64,
+                    _ => return Err(bad(key, "an integer", v)),
+                },
+                "robots" => match v {
+                    Term::Int(i) if (0..=1000).contains(i) => cfg.robots = Some(*i as usize),
+                    _ => return Err(bad(key, "an integer 0..1000", v)),
+                },
+                "gripperCapacity" => match v {
+                    Term::Int(i) if (0..=100).contains(i) => {
+                        cfg.robot.gripper_capacity = *i as usize
+                    }
+                    _ => return Err(bad(key, "an integer 0..100", v)),
+                },
+                "colorblind" => match (flag, v.list_items()) {
+                    (Some(b), _) => cfg.robot.colorblind = b,
+                    (None, Some(items)) => {
+                        cfg.colorblind = items
+                            .iter()
+                            .map(|t| t.to_text(crate::term::Style::WRITE))
+                            .collect()
+                    }
+                    _ => return Err(bad(key, "true, false or a list of robot names", v)),
+                },
+                "battery" => match num {
+                    Some(n) if n > 0.0 => cfg.robot.battery = Some(n),
+                    _ => return Err(bad(key, "a positive number", v)),
+                },
+                "speed" => match num {
+                    Some(n) if n > 0.0 && n <= 1.0 => cfg.robot.speed = n,
+                    _ => return Err(bad(key, "a number in (0, 1]", v)),
+                },
+                "size" => match num {
+                    Some(n) if (1.0..=5.0).contains(&n) => cfg.robot.size = n,
+                    _ => return Err(bad(key, "a number in 1..5", v)),
+                },
+                "oneBotPerCorridorZone" => match flag {
+                    Some(b) => cfg.one_bot_per_corridor_zone = Some(b),
+                    None => return Err(bad(key, "true or false", v)),
+                },
+                "positionPercepts" => match flag {
+                    Some(b) => cfg.position_percepts = b,
+                    None => return Err(bad(key, "true or false", v)),
+                },
+                other => {
+                    return Err(vec![Diagnostic::error(
+                        "M0021",
+                        format!("unknown init parameter `{other}`"),
+                        "init",
+                        0..0,
+                    )
+                    .with_hint(format!("known parameters: {}", INIT_PARAMS.join(", ")))])
+                }
+            }
+        }
+        let m = map::load(&map_name)?;
+        Ok(Bw4t::new(&m, &cfg))
+    }
+
+    /// The simulated world (read-only).
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// Problems met while setting up (e.g. robots that could not be spawned).
+    pub fn warnings(&self) -> &[String] {
+        &self.warnings
+    }
+
+    /// The run statistics so far.
+    pub fn run_stats(&self) -> RunStats {
+        let mut s = self.world.stats.clone();
+        s.ticks = self.world.tick;
+        s.sequence_index = self.world.sequence_index;
+        s.robots = self.world.robots.iter().map(|r| r.stats.clone()).collect();
+        s
+    }
+}
+
+impl Environment for Bw4t {
+    fn entities(&self) -> Vec<EntityInfo> {
+        self.world
+            .robots
+            .iter()
+            .map(|r| EntityInfo {
+                name: r.name.clone(),
+                kind: "bot".into(),
+            })
+            .collect()
+    }
+
+    fn declarations(&self) -> Vec<PerceptDecl> {
+        percepts::declarations()
+    }
+
+    fn perform(&mut self, entity: &str, action: &Term) -> ActionResult {
+        match self.world.robot_index(entity) {
+            Some(r) => self.world.perform(r, action),
+            None => ActionResult::fail(format!("unknown entity `{entity}`")),
+        }
+    }
+
+    fn tick(&mut self) {
+        self.world.step_robots();
+        self.world.tick += 1;
+    }
+
+    fn ticks(&self) -> u64 {
+        self.world.tick
+    }
+
+    fn percepts(&mut self, entity: &str) -> Vec<Term> {
+        match self.world.robot_index(entity) {
+            Some(r) => self.world.percept_batch(r, self.positions),
+            None => Vec::new(),
+        }
+    }
+
+    fn is_finished(&self) -> bool {
+        self.world.sequence_done()
+    }
+
+    fn stats(&self) -> serde_json::Value {
+        serde_json::to_value(self.run_stats()).unwrap_or(serde_json::Value::Null)
+    }
+}

@@ -1,0 +1,51 @@
+//! Run statistics: deliveries, drops and per-robot figures, serializable for a `--stats` file.
+
+use serde::Serialize;
+
+/// Statistics of one robot.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct RobotStats {
+    pub name: String,
+    /// Units travelled.
+    pub distance: f64,
+    /// Times the robot's centre entered a room (including the drop zone).
+    pub rooms_entered: u64,
+    /// Ticks without a plan to follow (arrived or collided).
+    pub idle_ticks: u64,
+    pub blocks_picked: u64,
+    pub deliveries_right: u64,
+    pub deliveries_wrong: u64,
+    pub messages_sent: u64,
+}
+
+impl RobotStats {
+    /// Empty statistics for the robot `name`.
+    pub fn new(name: &str) -> RobotStats {
+        RobotStats {
+            name: name.to_string(),
+            ..RobotStats::default()
+        }
+    }
+}
+
+/// Statistics of a run.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct RunStats {
+    pub map: String,
+    pub ticks: u64,
+    /// Blocks of the needed colour put down in the drop zone.
+    pub deliveries_right: u64,
+    /// Blocks of another colour put down in the drop zone (they are lost).
+    pub deliveries_wrong: u64,
+    /// Blocks put down in the drop zone after the sequence was complete.
+    pub dropped_after_completion: u64,
+    /// Blocks put down in rooms (they stay there).
+    pub dropped_in_rooms: u64,
+    /// Blocks put down outside rooms and the drop zone (they are lost).
+    pub dropped_elsewhere: u64,
+    pub sequence_length: usize,
+    pub sequence_index: usize,
+    /// The tick at which the last block of the sequence was delivered.
+    pub finished_at_tick: Option<u64>,
+    pub robots: Vec<RobotStats>,
+}
