@@ -1,0 +1,234 @@
+//! Performing one action: the built-ins (insert, delete, adopt, drop, print, log), user action
+//! specs (`pre`/`post`, `@env` actions handed to the caller) and sends (see `message.rs`).
+
+use super::condition::{compose, show_subst};
+use super::cycle::Core;
+use super::error::Fault;
+use super::goals::Goal;
+use super::program::{Act, Program, SpecDef};
+use super::trace::Event;
+use crate::term::{print::Style, Subst, Term};
+use rand::Rng;
+
+/// What happened when an action was tried.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// The action could not run (precondition false); a combo stops here.
+    NotRun,
+    /// The action ran; `real` tells whether it counts as a performed action.
+    Done { real: bool },
+}
+
+impl Core {
+    /// Performs a built-in action or a user action spec (not module calls or exit-module).
+    pub fn perform(&mut self, prog: &Program, act: &Act, s: &Subst) -> Result<Outcome, Fault> {
+        match act {
+            Act::Insert(t) => {
+                let u = ground(s, t, "insert")?;
+                let mut ev = Vec::new();
+                self.ms.update(&u, true, &mut ev)?;
+                self.changes(ev);
+                self.done(&Term::compound("insert", vec![u]))?;
+                self.check_goals()?;
+                Ok(Outcome::Done { real: true })
+            }
+            Act::Delete(t) => {
+                let u = ground(s, t, "delete")?;
+                let mut ev = Vec::new();
+                self.ms.delete(&u, &mut ev)?;
+                self.changes(ev);
+                self.done(&Term::compound("delete", vec![u]))?;
+                self.check_goals()?;
+                Ok(Outcome::Done { real: true })
+            }
+            Act::Adopt { top_level, content } => {
+                self.adopt(&ground(s, content, "adopt")?, *top_level)
+            }
+            Act::Drop(t) => {
+                let q = s.apply(t);
+                self.drop_goals(&q)?;
+                self.done(&Term::compound("drop", vec![q]))?;
+                Ok(Outcome::Done { real: true })
+            }
+            Act::Print(t) => {
+                let text = s.apply(t).to_text(Style::WRITE);
+                self.out.printed.push(text.clone());
+                self.changes(vec![Event::Print { text }]);
+                Ok(Outcome::Done { real: true })
+            }
+            Act::Log(t) => {
+                let text = s.apply(t).to_text(Style::WRITE);
+                self.changes(vec![Event::Log { text }]);
+                Ok(Outcome::Done { real: false })
+            }
+            Act::Send {
+                to,
+                mood,
+                content,
+                once,
+            } => self.send(to, *mood, content, *once, s),
+            Act::Spec { spec, args } => self.user_action(&prog.specs[*spec], args, s),
+            Act::ExitModule | Act::Module { .. } => Ok(Outcome::Done { real: false }),
+        }
+    }
+
+    /// Records an `ActionPerformed` event.
+    pub fn done(&mut self, action: &Term) -> Result<(), Fault> {
+        self.changes(vec![Event::ActionPerformed {
+            action: action.to_string(),
+        }]);
+        Ok(())
+    }
+
+    fn failed(&mut self, action: &Term, reason: &str) {
+        self.changes(vec![Event::ActionFailed {
+            action: action.to_string(),
+            reason: reason.to_string(),
+        }]);
+    }
+
+    /// Adopts `g` as one goal unless believed or already a goal.
+    pub fn adopt(&mut self, g: &Term, top_level: bool) -> Result<Outcome, Fault> {
+        let act = Term::compound("adopt", vec![g.clone()]);
+        for lit in g.conjuncts() {
+            if lit.is_functor(crate::term::well_known::NOT, 1) || lit.functor().is_none() {
+                return Err(Fault::new(format!("adopt needs positive facts: {g}")));
+            }
+        }
+        let base = if top_level {
+            self.ms.attention.top_level()
+        } else {
+            self.ms.attention.current()
+        };
+        if self
+            .ms
+            .is_goal_in(base, g, &mut self.rng, &mut self.kr_out)?
+        {
+            self.failed(&act, "already a goal");
+            return Ok(Outcome::NotRun);
+        }
+        if self.ms.believes(g, &mut self.rng, &mut self.kr_out)? {
+            self.failed(&act, "already believed");
+            return Ok(Outcome::NotRun);
+        }
+        let base = if top_level {
+            self.ms.attention.top_level_mut()
+        } else {
+            self.ms.attention.current_mut()
+        };
+        base.add(Goal::new(g.clone()));
+        self.changes(vec![Event::GoalAdopted {
+            goal: g.to_string(),
+        }]);
+        self.done(&act)?;
+        Ok(Outcome::Done { real: true })
+    }
+
+    /// Removes from every goal base each goal that entails `q`.
+    fn drop_goals(&mut self, q: &Term) -> Result<(), Fault> {
+        let mut victims: Vec<(usize, Term)> = Vec::new();
+        let depth = self.ms.attention.depth();
+        for i in 0..depth {
+            let goals = self.ms.attention.all_mut()[i].goals().to_vec();
+            for g in goals {
+                if !self
+                    .ms
+                    .in_goal(&g, q, &mut self.rng, &mut self.kr_out)?
+                    .is_empty()
+                {
+                    victims.push((i, g.term.clone()));
+                }
+            }
+        }
+        let mut ev = Vec::new();
+        for (i, t) in victims {
+            let removed = self.ms.attention.all_mut()[i].remove_where(|g| g.term == t);
+            for g in removed {
+                ev.push(Event::GoalDropped {
+                    goal: g.term.to_string(),
+                });
+            }
+        }
+        self.changes(ev);
+        Ok(())
+    }
+
+    /// Runs a user action spec: unify with the head, pick one grounding answer of `pre` at
+    /// random, hand `@env` actions to the caller, apply `post`.
+    fn user_action(&mut self, spec: &SpecDef, args: &[Term], s: &Subst) -> Result<Outcome, Fault> {
+        let call = Term::compound(spec.name, args.iter().map(|a| s.apply(a)).collect());
+        let mut m = Subst::new();
+        for (p, a) in spec.params.iter().zip(call.args()) {
+            if !m.unify(p, a, false) {
+                return Err(Fault::new(format!(
+                    "{call} does not match its action specification"
+                )));
+            }
+        }
+        let head = Term::compound(spec.name, spec.params.clone());
+        let pre = m.apply(&spec.pre);
+        let answers = self.ms.bel(&pre, &mut self.rng, &mut self.kr_out)?;
+        let grounding: Vec<Subst> = answers
+            .iter()
+            .map(|a| compose(&m, a))
+            .filter(|full| full.apply(&head).is_ground())
+            .collect();
+        if grounding.is_empty() {
+            if !answers.is_empty() {
+                return Err(Fault {
+                    message: format!("action {call} is not ground after its precondition"),
+                    binding: Some(show_subst(s)),
+                });
+            }
+            self.failed(&call, "precondition does not hold");
+            return Ok(Outcome::NotRun);
+        }
+        let pick = if grounding.len() == 1 {
+            0
+        } else {
+            self.rng.gen_range(0..grounding.len())
+        };
+        let full = &grounding[pick];
+        let inst = full.apply(&head);
+        if spec.env {
+            self.out.env_actions.push(inst.clone());
+            self.changes(vec![Event::EnvAction {
+                action: inst.to_string(),
+            }]);
+        }
+        let post = full.apply(&spec.post);
+        if !post.is_ground() {
+            return Err(Fault {
+                message: format!("postcondition {post} of {inst} is not ground"),
+                binding: Some(show_subst(full)),
+            });
+        }
+        let mut ev = Vec::new();
+        self.ms.update(&post, true, &mut ev)?;
+        self.done(&inst)?;
+        self.changes(ev);
+        self.check_goals()?;
+        Ok(Outcome::Done { real: true })
+    }
+
+    /// Blind commitment on the current attention set.
+    pub fn check_goals(&mut self) -> Result<(), Fault> {
+        let mut ev = Vec::new();
+        self.ms
+            .goal_check(&mut self.rng, &mut self.kr_out, &mut ev)?;
+        self.changes(ev);
+        Ok(())
+    }
+}
+
+fn ground(s: &Subst, t: &Term, what: &str) -> Result<Term, Fault> {
+    let u = s.apply(t);
+    if u.is_ground() {
+        Ok(u)
+    } else {
+        Err(Fault {
+            message: format!("{what}({u}) is not ground"),
+            binding: Some(show_subst(s)),
+        })
+    }
+}

@@ -1,0 +1,154 @@
+//! Mental-state conditions: `bel`, `goal`, `a-goal`, `goal-a`, `not(...)` and `true`, evaluated
+//! left to right into a duplicate-free list of answers (macros are expanded at compile time).
+
+use super::error::Fault;
+use super::goals::Goal;
+use super::mental_state::MentalState;
+use super::program::Lit;
+use crate::syntax::ast::MentalOp;
+use crate::term::{Subst, Term};
+use rand_chacha::ChaCha8Rng;
+
+/// Extends `base` with the bindings of `answer`.
+pub fn compose(base: &Subst, answer: &Subst) -> Subst {
+    let mut s = base.clone();
+    for (v, t) in answer.iter() {
+        s.bind(v, t.clone());
+    }
+    s
+}
+
+fn push_unique(out: &mut Vec<Subst>, s: Subst) {
+    if !out.contains(&s) {
+        out.push(s);
+    }
+}
+
+/// Evaluation context of a condition.
+pub struct CondCtx<'a> {
+    pub ms: &'a MentalState,
+    /// Restrict `this`-goals to this single goal (focus=select evaluation).
+    pub only: Option<&'a Goal>,
+}
+
+/// All answers of the condition `lits` extending `base`.
+pub fn eval(
+    cx: &CondCtx<'_>,
+    lits: &[Lit],
+    base: &Subst,
+    rng: &mut ChaCha8Rng,
+    out: &mut String,
+) -> Result<Vec<Subst>, Fault> {
+    let mut answers = vec![base.clone()];
+    for lit in lits {
+        let mut next = Vec::new();
+        for theta in &answers {
+            for a in literal(cx, lit, theta, rng, out)? {
+                push_unique(&mut next, a);
+            }
+        }
+        answers = next;
+        if answers.is_empty() {
+            break;
+        }
+    }
+    Ok(answers)
+}
+
+/// The answers of one literal under `theta` (each extends `theta`).
+fn literal(
+    cx: &CondCtx<'_>,
+    lit: &Lit,
+    theta: &Subst,
+    rng: &mut ChaCha8Rng,
+    out: &mut String,
+) -> Result<Vec<Subst>, Fault> {
+    let Lit::Mental {
+        negated,
+        top_level,
+        op,
+        query,
+    } = lit
+    else {
+        return Ok(vec![theta.clone()]);
+    };
+    let q = theta.apply(query);
+    let ms = cx.ms;
+    let mut raw: Vec<Subst> = Vec::new();
+    match op {
+        MentalOp::Bel => raw = ms.bel(&q, rng, out)?,
+        MentalOp::Goal | MentalOp::AGoal | MentalOp::GoalA => {
+            let single;
+            let goals: &[Goal] = match (top_level, cx.only) {
+                (true, _) => ms.attention.top_level().goals(),
+                (false, Some(g)) => {
+                    single = [g.clone()];
+                    &single
+                }
+                (false, None) => ms.attention.current().goals(),
+            };
+            for g in goals {
+                for a in ms.in_goal(g, &q, rng, out)? {
+                    if *op != MentalOp::Goal {
+                        let inst = a.apply(&q);
+                        if !inst.is_ground() {
+                            return Err(Fault {
+                                message: format!(
+                                    "{} query {} is not ground after the goal query",
+                                    if *op == MentalOp::AGoal {
+                                        "a-goal"
+                                    } else {
+                                        "goal-a"
+                                    },
+                                    inst
+                                ),
+                                binding: Some(show_subst(theta)),
+                            });
+                        }
+                        let believed = ms.believes(&inst, rng, out)?;
+                        if believed != (*op == MentalOp::GoalA) {
+                            continue;
+                        }
+                    }
+                    push_unique(&mut raw, a);
+                }
+            }
+        }
+    }
+    if *negated {
+        return Ok(if raw.is_empty() {
+            vec![theta.clone()]
+        } else {
+            Vec::new()
+        });
+    }
+    Ok(raw.iter().map(|a| compose(theta, a)).collect())
+}
+
+/// The positive `goal`/`a-goal` literals of a condition, instantiated (for focus=filter).
+pub fn goal_literals(lits: &[Lit], s: &Subst) -> Vec<Term> {
+    lits.iter()
+        .filter_map(|l| match l {
+            Lit::Mental {
+                negated: false,
+                op: MentalOp::Goal | MentalOp::AGoal,
+                query,
+                ..
+            } => Some(s.apply(query)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// A substitution printed as `X=a, Y=f(b)` (internal variables left out).
+pub fn show_subst(s: &Subst) -> String {
+    let mut parts = Vec::new();
+    for (v, t) in s.iter() {
+        let name = v.name();
+        if name.starts_with('_') {
+            continue;
+        }
+        parts.push(format!("{name}={}", s.apply(t)));
+    }
+    parts.join(", ")
+}

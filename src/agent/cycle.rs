@@ -1,0 +1,281 @@
+//! The agent and its reasoning cycle: `Agent::step(percepts, messages)` runs one cycle
+//! (percepts, messages, init on the first cycle, event when something is new, then main until
+//! it performs a real action) and returns what the agent did. No I/O, no threads.
+
+use super::error::RuntimeError;
+use super::kr_bridge::Limits;
+use super::mailbox::Message;
+use super::mental_state::MentalState;
+use super::module::{Frame, RunEnd};
+use super::percepts::PerceptTypes;
+use super::program::Program;
+use super::trace::{Event, TraceLevel};
+use crate::term::Term;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use std::sync::Arc;
+
+/// Why an agent stopped.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum StopReason {
+    /// The main module exited.
+    MainExited,
+    /// A fatal runtime error.
+    Error(RuntimeError),
+}
+
+/// What one cycle produced.
+#[derive(Clone, Debug, Default)]
+pub struct CycleOutput {
+    /// Environment actions (ground terms), in the order performed.
+    pub env_actions: Vec<Term>,
+    /// Outgoing messages, one per receiver, in the order sent.
+    pub messages: Vec<Message>,
+    /// The trace of the cycle.
+    pub events: Vec<Event>,
+    /// Lines written by `print/1`.
+    pub printed: Vec<String>,
+    /// Set when the agent stopped (in this or an earlier cycle).
+    pub stopped: Option<StopReason>,
+}
+
+/// How to create an agent.
+#[derive(Clone, Debug)]
+pub struct AgentConfig {
+    /// Seed of the agent's random generator.
+    pub seed: u64,
+    /// Names of every agent in the system (the agent's own name may be included).
+    pub agents: Vec<String>,
+    /// Percept types declared by the environment.
+    pub percept_types: Arc<PerceptTypes>,
+    /// Limits of each KR query.
+    pub limits: Limits,
+    /// Maximum interpreter steps per cycle.
+    pub max_steps: u64,
+    /// How much to trace.
+    pub trace: TraceLevel,
+}
+
+impl Default for AgentConfig {
+    fn default() -> Self {
+        AgentConfig {
+            seed: 0,
+            agents: Vec::new(),
+            percept_types: Arc::new(PerceptTypes::default()),
+            limits: Limits::default(),
+            max_steps: 1_000_000,
+            trace: TraceLevel::Rules,
+        }
+    }
+}
+
+/// The mutable core of an agent that actions work on.
+pub struct Core {
+    pub name: String,
+    pub ms: MentalState,
+    pub rng: ChaCha8Rng,
+    pub out: CycleOutput,
+    /// Known agents (sorted, including self).
+    pub known: Vec<String>,
+    pub level: TraceLevel,
+    pub max_steps: u64,
+    /// Output of Prolog write/format built-ins.
+    pub kr_out: String,
+}
+
+impl Core {
+    /// Records an event if the trace level asks for it.
+    pub fn event(&mut self, e: Event) {
+        let need = match e {
+            Event::Warning { .. } | Event::Error { .. } | Event::Stopped { .. } => TraceLevel::Off,
+            Event::RuleEvaluated { .. } | Event::RuleFired { .. } => TraceLevel::Rules,
+            _ => TraceLevel::Changes,
+        };
+        if self.level >= need {
+            self.out.events.push(e);
+        }
+    }
+
+    /// Records several events.
+    pub fn changes(&mut self, events: Vec<Event>) {
+        for e in events {
+            self.event(e);
+        }
+    }
+}
+
+/// A GOAL agent: its program (shared), mental state, random generator and execution state.
+pub struct Agent {
+    program: Arc<Program>,
+    core: Core,
+    types: Arc<PerceptTypes>,
+    cycle: u64,
+    main: Vec<Frame>,
+    main_entered: bool,
+    acted_last: bool,
+    stopped: Option<StopReason>,
+}
+
+impl Agent {
+    /// Creates agent `name` running `program`.
+    pub fn new(program: Arc<Program>, name: &str, config: AgentConfig) -> Agent {
+        let mut known: Vec<String> = config.agents.clone();
+        if !known.iter().any(|n| n == name) {
+            known.push(name.to_string());
+        }
+        known.sort();
+        known.dedup();
+        let others: Vec<Term> = known
+            .iter()
+            .filter(|n| *n != name)
+            .map(|n| Term::atom(n))
+            .collect();
+        let ms = MentalState::new(
+            program.knowledge.clone(),
+            &Term::atom(name),
+            &others,
+            config.limits,
+        );
+        Agent {
+            program,
+            core: Core {
+                name: name.to_string(),
+                ms,
+                rng: ChaCha8Rng::seed_from_u64(config.seed),
+                out: CycleOutput::default(),
+                known,
+                level: config.trace,
+                max_steps: config.max_steps,
+                kr_out: String::new(),
+            },
+            types: config.percept_types,
+            cycle: 0,
+            main: Vec::new(),
+            main_entered: false,
+            acted_last: false,
+            stopped: None,
+        }
+    }
+
+    /// The agent's name.
+    pub fn name(&self) -> &str {
+        &self.core.name
+    }
+
+    /// The mental state (read-only).
+    pub fn mental_state(&self) -> &MentalState {
+        &self.core.ms
+    }
+
+    /// Number of cycles run.
+    pub fn cycles(&self) -> u64 {
+        self.cycle
+    }
+
+    /// Why the agent stopped, if it did.
+    pub fn stopped(&self) -> Option<&StopReason> {
+        self.stopped.as_ref()
+    }
+
+    /// Runs one reasoning cycle with this cycle's percepts and incoming messages.
+    pub fn step(&mut self, percepts: &[Term], messages: &[Message]) -> CycleOutput {
+        if let Some(s) = &self.stopped {
+            return CycleOutput {
+                stopped: Some(s.clone()),
+                ..CycleOutput::default()
+            };
+        }
+        self.cycle += 1;
+        self.core.out = CycleOutput::default();
+        self.core.event(Event::CycleStart { cycle: self.cycle });
+        match self.run_cycle(percepts, messages) {
+            Ok(None) => {}
+            Ok(Some(reason)) => self.stop(reason),
+            Err(e) => {
+                self.core.event(Event::Error {
+                    message: e.to_string(),
+                });
+                self.stop(StopReason::Error(e));
+            }
+        }
+        if !self.core.kr_out.is_empty() {
+            let text = std::mem::take(&mut self.core.kr_out);
+            self.core
+                .out
+                .printed
+                .extend(text.lines().map(str::to_string));
+        }
+        std::mem::take(&mut self.core.out)
+    }
+
+    fn stop(&mut self, reason: StopReason) {
+        let text = match &reason {
+            StopReason::MainExited => "main module exited".to_string(),
+            StopReason::Error(e) => format!("runtime error: {e}"),
+        };
+        self.core.event(Event::Stopped { reason: text });
+        self.core.out.stopped = Some(reason.clone());
+        self.stopped = Some(reason);
+        self.main.clear();
+    }
+
+    fn run_cycle(
+        &mut self,
+        percepts: &[Term],
+        messages: &[Message],
+    ) -> Result<Option<StopReason>, RuntimeError> {
+        let prog = self.program.clone();
+        let core = &mut self.core;
+        let ch = core.ms.percepts.apply(percepts, &self.types);
+        for p in ch.removed {
+            core.event(Event::PerceptRemoved {
+                percept: p.to_string(),
+            });
+        }
+        for p in ch.added {
+            core.event(Event::PerceptAdded {
+                percept: p.to_string(),
+            });
+        }
+        if core.receive(messages) {
+            core.check_goals().map_err(|e| core.error(&prog, None, e))?;
+        }
+        let new = !percepts.is_empty() || !messages.is_empty() || self.acted_last;
+        if self.cycle == 1 {
+            if let Some(init) = prog.init {
+                self.run_once(&prog, init)?;
+            }
+        }
+        if new {
+            if let Some(event) = prog.event {
+                self.run_once(&prog, event)?;
+            }
+        }
+        let core = &mut self.core;
+        if !self.main_entered {
+            self.main_entered = true;
+            let f = core
+                .enter(&prog, prog.main, &[], None)
+                .map_err(|e| core.error(&prog, None, e))?;
+            self.main.push(Frame::Module(f));
+        }
+        match core.run(&prog, &mut self.main, true)? {
+            RunEnd::Suspended { acted } => {
+                self.acted_last = acted;
+                Ok(None)
+            }
+            RunEnd::Finished => Ok(Some(StopReason::MainExited)),
+        }
+    }
+
+    /// Runs `init` or `event` to completion (no cycle boundaries inside).
+    fn run_once(&mut self, prog: &Program, idx: usize) -> Result<(), RuntimeError> {
+        let core = &mut self.core;
+        let f = core
+            .enter(prog, idx, &[], None)
+            .map_err(|e| core.error(prog, None, e))?;
+        let mut stack = vec![Frame::Module(f)];
+        core.run(prog, &mut stack, false)?;
+        Ok(())
+    }
+}

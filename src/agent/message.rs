@@ -1,0 +1,127 @@
+//! Sending messages: receivers by selector, mood wrapping, `sent/2` bookkeeping, `sendonce`;
+//! and receiving them into `received/2`.
+
+use super::action::Outcome;
+use super::condition::show_subst;
+use super::cycle::Core;
+use super::error::Fault;
+use super::mailbox::{received, sent, Message};
+use super::program::Receivers;
+use super::trace::Event;
+use crate::syntax::ast::Mood;
+use crate::term::{well_known as wk, Subst, Term};
+
+/// Wraps content in its mood: `p`, `imp(p)` or `int(p)`.
+pub fn wrap_mood(mood: Mood, content: Term) -> Term {
+    match mood {
+        Mood::Declarative => content,
+        Mood::Imperative => Term::compound(wk::IMP, vec![content]),
+        Mood::Interrogative => Term::compound(wk::INT, vec![content]),
+    }
+}
+
+impl Core {
+    /// The receiver names of a selector under `s`.
+    fn receivers(&self, to: &Receivers, s: &Subst) -> Result<Vec<String>, Fault> {
+        let mut names = Vec::new();
+        match to {
+            Receivers::All => names.extend(self.known.iter().cloned()),
+            Receivers::AllOther => {
+                names.extend(self.known.iter().filter(|n| **n != self.name).cloned())
+            }
+            Receivers::SelfAgent => names.push(self.name.clone()),
+            Receivers::Agents(ts) => {
+                let mut work: Vec<Term> = ts.iter().rev().map(|t| s.apply(t)).collect();
+                while let Some(t) = work.pop() {
+                    match &t {
+                        Term::Atom(a) if *a != wk::NIL => names.push(a.name().to_string()),
+                        Term::Atom(_) => {}
+                        Term::Str(x) => names.push(x.to_string()),
+                        Term::Compound(_) if t.is_cons() => {
+                            if let Some(items) = t.list_items() {
+                                work.extend(items.into_iter().rev());
+                            }
+                        }
+                        Term::Var(v) => {
+                            return Err(Fault {
+                                message: format!("variable {} in selector not bound", v.name()),
+                                binding: Some(show_subst(s)),
+                            })
+                        }
+                        _ => return Err(Fault::new(format!("{t} does not name an agent"))),
+                    }
+                }
+            }
+        }
+        Ok(names)
+    }
+
+    /// `send` / `sendonce`.
+    pub fn send(
+        &mut self,
+        to: &Receivers,
+        mood: Mood,
+        content: &Term,
+        once: bool,
+        s: &Subst,
+    ) -> Result<Outcome, Fault> {
+        let c = s.apply(content);
+        if mood != Mood::Interrogative && !c.is_ground() {
+            return Err(Fault {
+                message: format!("message content {c} is not ground"),
+                binding: Some(show_subst(s)),
+            });
+        }
+        let wrapped = wrap_mood(mood, c);
+        let mut ev = Vec::new();
+        for r in self.receivers(to, s)? {
+            if !self.known.contains(&r) {
+                ev.push(Event::Warning {
+                    message: format!("message {wrapped} to unknown agent {r} dropped"),
+                });
+                continue;
+            }
+            let rt = Term::atom(&r);
+            if once && self.ms.mailbox.has_sent(&rt, &wrapped) {
+                continue;
+            }
+            self.out.messages.push(Message {
+                sender: self.name.clone(),
+                receiver: r.clone(),
+                content: wrapped.clone(),
+            });
+            ev.push(Event::MessageSent {
+                to: rt.to_string(),
+                content: wrapped.to_string(),
+            });
+            let f = sent(&rt, &wrapped);
+            if self.ms.mailbox.insert(f.clone()) {
+                ev.push(Event::MailAdded {
+                    fact: f.to_string(),
+                });
+            }
+        }
+        for e in ev {
+            self.event(e);
+        }
+        let name = if once { "sendonce" } else { "send" };
+        self.done(&Term::compound(name, vec![wrapped]))?;
+        self.check_goals()?;
+        Ok(Outcome::Done { real: true })
+    }
+
+    /// Stores incoming messages as `received(Sender, Content)`; true when there were any.
+    pub fn receive(&mut self, messages: &[Message]) -> bool {
+        let mut ev = Vec::new();
+        for m in messages {
+            let f = received(&Term::atom(&m.sender), &m.content);
+            if self.ms.mailbox.insert(f.clone()) {
+                ev.push(Event::MailAdded {
+                    fact: f.to_string(),
+                });
+            }
+        }
+        self.changes(ev);
+        !messages.is_empty()
+    }
+}

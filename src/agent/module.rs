@@ -1,0 +1,416 @@
+//! Modules as an explicit stack of frames: passes in the module's order, rule applications,
+//! combos, module calls with parameters and focus, exit conditions and `exit-module`. The
+//! stack can be suspended between rule applications (one action per cycle) and resumed.
+
+use super::action::Outcome;
+use super::condition::goal_literals;
+use super::cycle::Core;
+use super::error::{Fault, RuntimeError};
+use super::goals::{Goal, GoalBase};
+use super::program::{Act, Body, ModuleDef, Program};
+use super::rule::Answer;
+use super::trace::Event;
+use crate::syntax::ast::{ExitCondition, Focus, Order};
+use crate::term::{Subst, Term};
+use rand::seq::SliceRandom;
+use rand::Rng;
+
+/// A module (named or a nested block) being run.
+#[derive(Clone, Debug)]
+pub struct ModFrame {
+    /// The named module, or `None` for a nested block.
+    pub module: Option<usize>,
+    pub block: usize,
+    pub subst: Subst,
+    pub order: Vec<u32>,
+    pub next: usize,
+    pub pass_acted: bool,
+    pub acted: bool,
+    pub pushed_focus: bool,
+    pub exiting: bool,
+}
+
+/// A rule application: the answers and the next one to run.
+#[derive(Clone, Debug)]
+pub struct RuleFrame {
+    pub block: usize,
+    pub rule: usize,
+    pub answers: Vec<Answer>,
+    pub next: usize,
+    pub acted: bool,
+}
+
+/// A combo being run for one answer.
+#[derive(Clone, Debug)]
+pub struct ComboFrame {
+    pub block: usize,
+    pub rule: usize,
+    pub answer: Answer,
+    pub next: usize,
+    pub acted: bool,
+}
+
+/// One element of the execution stack.
+#[derive(Clone, Debug)]
+pub enum Frame {
+    Module(ModFrame),
+    Rule(RuleFrame),
+    Combo(ComboFrame),
+}
+
+/// Why a run of the stack returned.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RunEnd {
+    /// A cycle boundary in main context; `acted` tells whether real actions were performed.
+    Suspended { acted: bool },
+    /// The bottom module exited.
+    Finished,
+}
+
+/// Bound on nested module calls (modules may call themselves).
+pub const MAX_FRAMES: usize = 3_000;
+
+fn is_linear(o: Order) -> bool {
+    matches!(o, Order::Linear | Order::Random | Order::Adaptive)
+}
+
+impl Core {
+    fn order(&mut self, prog: &Program, block: usize) -> Vec<u32> {
+        let b = &prog.blocks[block];
+        let mut o: Vec<u32> = (0..b.rules.len() as u32).collect();
+        if matches!(b.order, Order::Random | Order::RandomAll | Order::Adaptive) {
+            o.shuffle(&mut self.rng);
+        }
+        o
+    }
+
+    /// Enters a named module: focus, beliefs, goals; returns its frame.
+    pub fn enter(
+        &mut self,
+        prog: &Program,
+        idx: usize,
+        args: &[Term],
+        caller: Option<(&Subst, &Answer, &[super::program::Lit])>,
+    ) -> Result<ModFrame, Fault> {
+        let m: &ModuleDef = &prog.modules[idx];
+        let mut subst = Subst::new();
+        if let Some((cs, _, _)) = caller {
+            for (p, a) in m.params.iter().zip(args) {
+                if !subst.unify(p, &cs.apply(a), false) {
+                    return Err(Fault::new(format!(
+                        "module {} cannot take these arguments",
+                        m.name
+                    )));
+                }
+            }
+        }
+        let pushed_focus = match (m.focus, caller) {
+            (Focus::None, _) | (_, None) => false,
+            (Focus::New, _) => {
+                self.ms.attention.push(GoalBase::default());
+                true
+            }
+            (Focus::Select, Some((_, ans, _))) => {
+                let mut base = GoalBase::default();
+                if !ans.goals.is_empty() {
+                    let i = self.rng.gen_range(0..ans.goals.len());
+                    base.add(ans.goals[i].clone());
+                }
+                self.ms.attention.push(base);
+                true
+            }
+            (Focus::Filter, Some((cs, _, lits))) => {
+                let mut base = GoalBase::default();
+                for g in goal_literals(lits, cs) {
+                    if g.is_ground() && !self.ms.believes(&g, &mut self.rng, &mut self.kr_out)? {
+                        base.add(Goal::new(g));
+                    }
+                }
+                self.ms.attention.push(base);
+                true
+            }
+        };
+        self.event(Event::ModuleEntered {
+            module: m.name.clone(),
+        });
+        let mut ev = Vec::new();
+        for b in &m.beliefs {
+            self.ms.update(b, true, &mut ev)?;
+        }
+        self.changes(ev);
+        for g in &m.goals {
+            let g = subst.apply(g);
+            if !g.is_ground() {
+                return Err(Fault::new(format!(
+                    "goal {g} of module {} is not ground",
+                    m.name
+                )));
+            }
+            self.adopt(&g, false)?;
+        }
+        let order = self.order(prog, m.block);
+        Ok(ModFrame {
+            module: Some(idx),
+            block: m.block,
+            subst,
+            order,
+            next: 0,
+            pass_acted: false,
+            acted: false,
+            pushed_focus,
+            exiting: false,
+        })
+    }
+
+    /// Runs the stack until a cycle boundary (main context only) or until it is empty.
+    pub fn run(
+        &mut self,
+        prog: &Program,
+        stack: &mut Vec<Frame>,
+        main_ctx: bool,
+    ) -> Result<RunEnd, RuntimeError> {
+        let mut steps: u64 = 0;
+        loop {
+            steps += 1;
+            if steps > self.max_steps {
+                return Err(self.error(
+                    prog,
+                    None,
+                    Fault::new("step budget exceeded (a module loops without end)"),
+                ));
+            }
+            if stack.len() > MAX_FRAMES {
+                return Err(self.error(prog, None, Fault::new("module calls nest too deeply")));
+            }
+            let Some(top) = stack.last_mut() else {
+                return Ok(RunEnd::Finished);
+            };
+            match top {
+                Frame::Module(f) => {
+                    if f.exiting {
+                        let f = f.clone();
+                        stack.pop();
+                        self.leave(prog, &f)
+                            .map_err(|e| self.error(prog, None, e))?;
+                        if stack.is_empty() {
+                            return Ok(RunEnd::Finished);
+                        }
+                        propagate(stack, f.acted);
+                        continue;
+                    }
+                    let block = &prog.blocks[f.block];
+                    if f.next < f.order.len() {
+                        let ri = f.order[f.next] as usize;
+                        f.next += 1;
+                        let (b, s) = (f.block, f.subst.clone());
+                        let rule = &block.rules[ri];
+                        let answers = self
+                            .rule_answers(rule, &s)
+                            .map_err(|e| self.error(prog, Some((b, ri, rule.line)), e))?;
+                        if !answers.is_empty() {
+                            stack.push(Frame::Rule(RuleFrame {
+                                block: b,
+                                rule: ri,
+                                answers,
+                                next: 0,
+                                acted: false,
+                            }));
+                        }
+                        continue;
+                    }
+                    // End of a pass: exit or start another one.
+                    let exit = match f.module {
+                        None => true,
+                        Some(m) => match prog.modules[m].exit {
+                            ExitCondition::Always => true,
+                            ExitCondition::Never => false,
+                            ExitCondition::NoGoals => self.ms.attention.current().is_empty(),
+                            ExitCondition::NoAction => !f.pass_acted,
+                        },
+                    };
+                    if exit {
+                        f.exiting = true;
+                        continue;
+                    }
+                    let idle = !f.pass_acted;
+                    let b = f.block;
+                    f.next = 0;
+                    f.pass_acted = false;
+                    let order = self.order(prog, b);
+                    if let Some(Frame::Module(f)) = stack.last_mut() {
+                        f.order = order;
+                    }
+                    if main_ctx && idle {
+                        return Ok(RunEnd::Suspended { acted: false });
+                    }
+                }
+                Frame::Rule(r) => {
+                    let rule = &prog.blocks[r.block].rules[r.rule];
+                    let done = (r.acted && rule.kind == super::program::RuleKind::If)
+                        || r.next >= r.answers.len();
+                    if done {
+                        let acted = r.acted;
+                        stack.pop();
+                        propagate(stack, acted);
+                        if let Some(Frame::Module(m)) = stack.last_mut() {
+                            if acted && is_linear(prog.blocks[m.block].order) {
+                                m.next = m.order.len();
+                            }
+                        }
+                        if main_ctx && acted {
+                            return Ok(RunEnd::Suspended { acted: true });
+                        }
+                        continue;
+                    }
+                    let answer = r.answers[r.next].clone();
+                    r.next += 1;
+                    let (b, ri) = (r.block, r.rule);
+                    self.fired(rule, &answer.subst);
+                    match &rule.body {
+                        Body::Combo(_) => stack.push(Frame::Combo(ComboFrame {
+                            block: b,
+                            rule: ri,
+                            answer,
+                            next: 0,
+                            acted: false,
+                        })),
+                        Body::Block(inner) => {
+                            let order = self.order(prog, *inner);
+                            stack.push(Frame::Module(ModFrame {
+                                module: None,
+                                block: *inner,
+                                subst: answer.subst,
+                                order,
+                                next: 0,
+                                pass_acted: false,
+                                acted: false,
+                                pushed_focus: false,
+                                exiting: false,
+                            }))
+                        }
+                    }
+                }
+                Frame::Combo(c) => {
+                    let rule = &prog.blocks[c.block].rules[c.rule];
+                    let Body::Combo(actions) = &rule.body else {
+                        stack.pop();
+                        continue;
+                    };
+                    if c.next >= actions.len() {
+                        let acted = c.acted;
+                        stack.pop();
+                        propagate(stack, acted);
+                        continue;
+                    }
+                    let a = &actions[c.next];
+                    c.next += 1;
+                    let loc = Some((c.block, c.rule, a.line));
+                    match &a.kind {
+                        Act::ExitModule => {
+                            self.event(Event::ActionPerformed {
+                                action: "exit-module".into(),
+                            });
+                            exit_module(stack);
+                        }
+                        Act::Module { module, args } => {
+                            let c = c.clone();
+                            let f = self
+                                .enter(
+                                    prog,
+                                    *module,
+                                    args,
+                                    Some((&c.answer.subst, &c.answer, &rule.cond)),
+                                )
+                                .map_err(|e| self.error(prog, loc, e))?;
+                            stack.push(Frame::Module(f));
+                        }
+                        act => {
+                            let s = c.answer.subst.clone();
+                            match self
+                                .perform(prog, act, &s)
+                                .map_err(|e| self.error(prog, loc, e))?
+                            {
+                                Outcome::NotRun => {
+                                    if let Some(Frame::Combo(c)) = stack.last_mut() {
+                                        c.next = usize::MAX;
+                                    }
+                                }
+                                Outcome::Done { real } => {
+                                    if let Some(Frame::Combo(c)) = stack.last_mut() {
+                                        c.acted |= real;
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Leaves a named module: defocus and goal check.
+    fn leave(&mut self, prog: &Program, f: &ModFrame) -> Result<(), Fault> {
+        if let Some(m) = f.module {
+            if f.pushed_focus {
+                self.ms.attention.pop();
+                self.check_goals()?;
+            }
+            self.event(Event::ModuleExited {
+                module: prog.modules[m].name.clone(),
+            });
+        }
+        Ok(())
+    }
+
+    /// A runtime error with file, line and rule.
+    pub fn error(
+        &self,
+        prog: &Program,
+        loc: Option<(usize, usize, usize)>,
+        f: Fault,
+    ) -> RuntimeError {
+        let (rule, line) = match loc {
+            Some((b, r, line)) => (Some(prog.blocks[b].rules[r].label.to_string()), line),
+            None => (None, 0),
+        };
+        RuntimeError {
+            file: prog.file.clone(),
+            line,
+            rule,
+            message: f.message,
+            binding: f.binding,
+        }
+    }
+}
+
+/// Passes a child's "performed a real action" result to its parent frame.
+fn propagate(stack: &mut [Frame], acted: bool) {
+    match stack.last_mut() {
+        Some(Frame::Combo(c)) => c.acted |= acted,
+        Some(Frame::Rule(r)) => r.acted |= acted,
+        Some(Frame::Module(m)) => {
+            m.pass_acted |= acted;
+            m.acted |= acted;
+        }
+        None => {}
+    }
+}
+
+/// `exit-module`: unwinds to the innermost named module and marks it as exiting.
+fn exit_module(stack: &mut Vec<Frame>) {
+    while let Some(top) = stack.last_mut() {
+        if let Frame::Module(m) = top {
+            if m.module.is_some() {
+                m.exiting = true;
+                return;
+            }
+        }
+        let acted = match stack.pop() {
+            Some(Frame::Combo(c)) => c.acted,
+            Some(Frame::Rule(r)) => r.acted,
+            Some(Frame::Module(m)) => m.acted,
+            None => false,
+        };
+        propagate(stack, acted);
+    }
+}

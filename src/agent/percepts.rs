@@ -1,0 +1,124 @@
+//! The typed percept base: percepts are kept according to the type the environment declares
+//! for their predicate, and `bel(percept(X))` reads this base.
+
+use super::kr_bridge::FactBase;
+use crate::term::{well_known as wk, Sym, Term};
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// How the environment sends a percept (and so how long the agent keeps it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum PerceptType {
+    /// Sent once; kept until a `not(p)` percept deletes it.
+    Once,
+    /// Sent when its value changes; a batch with this predicate replaces all its old facts.
+    OnChange,
+    /// Sent on change, with `not(p)` when `p` stops holding; facts are added and deleted.
+    OnChangeNeg,
+    /// Sent every tick; each batch replaces the predicate's facts (absent means no longer true).
+    Always,
+}
+
+/// Percept types by `(name, arity)`; unknown percepts are `Always`.
+#[derive(Clone, Debug, Default)]
+pub struct PerceptTypes {
+    map: BTreeMap<(String, usize), PerceptType>,
+}
+
+impl PerceptTypes {
+    /// Builds the map from declarations.
+    pub fn new(decls: impl IntoIterator<Item = ((String, usize), PerceptType)>) -> PerceptTypes {
+        PerceptTypes {
+            map: decls.into_iter().collect(),
+        }
+    }
+
+    /// The type of a percept term.
+    pub fn of(&self, t: &Term) -> PerceptType {
+        match t.functor() {
+            Some((s, n)) if !self.map.is_empty() => self
+                .map
+                .get(&(s.name().to_string(), n))
+                .copied()
+                .unwrap_or(PerceptType::Always),
+            _ => PerceptType::Always,
+        }
+    }
+}
+
+/// Changes made to the percept base by one batch.
+#[derive(Debug, Default)]
+pub struct PerceptChanges {
+    /// Percepts that became visible.
+    pub added: Vec<Term>,
+    /// Percepts that stopped being visible.
+    pub removed: Vec<Term>,
+}
+
+/// The percept base: facts `percept(P)`.
+#[derive(Clone, Debug, Default)]
+pub struct PerceptBase {
+    facts: FactBase,
+}
+
+fn wrap(p: &Term) -> Term {
+    Term::compound(wk::PERCEPT, vec![p.clone()])
+}
+
+impl PerceptBase {
+    /// The facts (`percept(P)`) for queries.
+    pub fn facts(&self) -> &FactBase {
+        &self.facts
+    }
+
+    /// True when `p` is currently perceived.
+    pub fn contains(&self, p: &Term) -> bool {
+        self.facts.contains(&wrap(p))
+    }
+
+    /// Applies one batch according to the types.
+    pub fn apply(&mut self, batch: &[Term], types: &PerceptTypes) -> PerceptChanges {
+        let mut ch = PerceptChanges::default();
+        let mut positive: Vec<&Term> = Vec::new();
+        let mut negative: Vec<&Term> = Vec::new();
+        for p in batch {
+            if p.is_functor(wk::NOT, 1) {
+                negative.push(&p.args()[0]);
+            } else if p.functor().is_some() {
+                positive.push(p);
+            }
+        }
+        // Predicates whose facts this batch replaces: all `Always` ones, and `OnChange` ones
+        // mentioned in the batch.
+        let mentioned: Vec<(Sym, usize)> = positive.iter().filter_map(|p| p.functor()).collect();
+        let stale: Vec<Term> = self
+            .facts
+            .iter()
+            .filter(|f| {
+                let p = &f.args()[0];
+                match types.of(p) {
+                    PerceptType::Always => true,
+                    PerceptType::OnChange => p.functor().is_some_and(|k| mentioned.contains(&k)),
+                    _ => false,
+                }
+            })
+            .filter(|f| !positive.contains(&&f.args()[0]))
+            .cloned()
+            .collect();
+        for f in stale {
+            self.facts.delete(&f);
+            ch.removed.push(f.args()[0].clone());
+        }
+        for n in negative {
+            if self.facts.delete(&wrap(n)) {
+                ch.removed.push(n.clone());
+            }
+        }
+        for p in positive {
+            if self.facts.insert(wrap(p)) {
+                ch.added.push(p.clone());
+            }
+        }
+        ch
+    }
+}

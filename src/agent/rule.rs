@@ -1,0 +1,116 @@
+//! Rule kinds: computing the answers a rule body runs for (`if`: shuffled, one acting answer;
+//! `forall`: all answers computed up front; `listall`: one answer binding the list).
+
+use super::condition::{eval, show_subst, CondCtx};
+use super::cycle::Core;
+use super::error::Fault;
+use super::goals::Goal;
+use super::program::{RuleDef, RuleKind};
+use super::trace::Event;
+use crate::term::{Subst, Sym, Term};
+use rand::seq::SliceRandom;
+
+/// One answer of a rule condition, with the goals that produced it (for focus=select).
+#[derive(Clone, Debug)]
+pub struct Answer {
+    pub subst: Subst,
+    pub goals: Vec<Goal>,
+}
+
+impl Core {
+    /// The answers the rule's body runs for, in the order to try them (empty: not applicable).
+    pub fn rule_answers(&mut self, rule: &RuleDef, base: &Subst) -> Result<Vec<Answer>, Fault> {
+        let mut answers: Vec<Answer> = Vec::new();
+        if rule.per_goal {
+            // focus=select: evaluate per single goal and remember which goals gave each answer.
+            let goals = self.ms.attention.current().goals().to_vec();
+            for g in &goals {
+                let cx = CondCtx {
+                    ms: &self.ms,
+                    only: Some(g),
+                };
+                for s in eval(&cx, &rule.cond, base, &mut self.rng, &mut self.kr_out)? {
+                    match answers.iter_mut().find(|a| a.subst == s) {
+                        Some(a) => a.goals.push(g.clone()),
+                        None => answers.push(Answer {
+                            subst: s,
+                            goals: vec![g.clone()],
+                        }),
+                    }
+                }
+            }
+        } else {
+            let cx = CondCtx {
+                ms: &self.ms,
+                only: None,
+            };
+            answers = eval(&cx, &rule.cond, base, &mut self.rng, &mut self.kr_out)?
+                .into_iter()
+                .map(|subst| Answer {
+                    subst,
+                    goals: Vec::new(),
+                })
+                .collect();
+        }
+        self.event(Event::RuleEvaluated {
+            rule: rule.label.to_string(),
+            answers: answers.len(),
+        });
+        match &rule.kind {
+            RuleKind::If => answers.shuffle(&mut self.rng),
+            RuleKind::Forall => {}
+            RuleKind::Listall(v) => {
+                if answers.is_empty() {
+                    return Ok(answers);
+                }
+                let free = free_vars(rule, base);
+                let items: Vec<Term> = answers
+                    .iter()
+                    .map(|a| match free.len() {
+                        1 => a.subst.apply(&Term::Var(free[0])),
+                        _ => Term::list(
+                            free.iter()
+                                .map(|f| a.subst.apply(&Term::Var(*f)))
+                                .collect::<Vec<_>>(),
+                        ),
+                    })
+                    .collect();
+                let mut s = base.clone();
+                s.bind(*v, Term::list(items));
+                return Ok(vec![Answer {
+                    subst: s,
+                    goals: Vec::new(),
+                }]);
+            }
+        }
+        Ok(answers)
+    }
+
+    /// Records that a rule's body runs for an answer.
+    pub fn fired(&mut self, rule: &RuleDef, s: &Subst) {
+        self.event(Event::RuleFired {
+            rule: rule.label.to_string(),
+            bindings: show_subst(s),
+        });
+    }
+}
+
+/// The variables of a rule's condition not bound by `base`, in order of occurrence.
+fn free_vars(rule: &RuleDef, base: &Subst) -> Vec<Sym> {
+    let mut out: Vec<Sym> = Vec::new();
+    for l in &rule.cond {
+        if let super::program::Lit::Mental {
+            negated: false,
+            query,
+            ..
+        } = l
+        {
+            for v in query.vars() {
+                if base.get(v).is_none() && !out.contains(&v) && !v.name().starts_with('_') {
+                    out.push(v);
+                }
+            }
+        }
+    }
+    out
+}

@@ -1,0 +1,484 @@
+//! One test per semantic rule of the GOAL language (goal-language.md §4-§8).
+
+mod agent_support;
+use agent_support::*;
+use goal::agent::StopReason;
+
+#[test]
+fn init_beliefs_and_print() {
+    let mut a = agent(
+        "init module { beliefs { count(0). } }
+         main module { program { if bel(count(X)) then print(X) + exit-module. } }",
+    );
+    let outs = run(&mut a, 3);
+    assert_eq!(printed(&outs), ["0"]);
+    assert_eq!(a.stopped(), Some(&StopReason::MainExited));
+}
+
+#[test]
+fn conjunctive_goal_query_needs_one_goal() {
+    let rules = "main module { program {
+        if goal(on(a,b), on(b,c)) then print(yes) + exit-module.
+        if true then print(no) + exit-module. } }";
+    let mut one = agent(&format!(
+        "init module {{ goals {{ on(a,b), on(b,c). }} }} {rules}"
+    ));
+    assert_eq!(printed(&run(&mut one, 2)), ["yes"]);
+    let mut two = agent(&format!(
+        "init module {{ goals {{ on(a,b). on(b,c). }} }} {rules}"
+    ));
+    assert_eq!(printed(&run(&mut two, 2)), ["no"]);
+}
+
+#[test]
+fn goal_queries_see_knowledge_but_not_beliefs() {
+    let mut a = agent(
+        "init module { knowledge { above(X,Y) :- on(X,Y). }
+                       beliefs { on(c,d). } goals { on(a,b). } }
+         main module { program {
+            if goal(above(X,Y)) then print(X-Y).
+            if goal(on(c,d)) then print(wrong).
+            if true then exit-module. } }",
+    );
+    assert_eq!(run(&mut a, 1)[0].printed, ["a-b"]);
+}
+
+#[test]
+fn a_goal_and_goal_a_split_a_goal_by_belief() {
+    let src = |op: &str| {
+        format!(
+            "init module {{ beliefs {{ on(b,c). }} goals {{ on(a,b), on(b,c). }} }}
+             main module {{ program {{ forall {op}(on(X,Y)) do print(X). if true then exit-module. }} }}"
+        )
+    };
+    assert_eq!(run(&mut agent(&src("a-goal")), 1)[0].printed, ["a"]);
+    assert_eq!(run(&mut agent(&src("goal-a")), 1)[0].printed, ["b"]);
+    assert_eq!(run(&mut agent(&src("goal")), 1)[0].printed, ["a", "b"]);
+}
+
+#[test]
+fn not_succeeds_without_binding_and_true_holds() {
+    let mut a = agent(
+        "init module { beliefs { p(1). } }
+         main module { program {
+            if not(bel(q(_))), true, bel(p(X)) then print(X) + exit-module. } }",
+    );
+    assert_eq!(printed(&run(&mut a, 2)), ["1"]);
+}
+
+#[test]
+fn macros_expand_with_renamed_variables() {
+    let mut a = agent(
+        "init module { beliefs { p(1). q(1). p(2). r(5). } }
+         main module { program {
+            #define both(X) bel(p(X), q(X)).
+            #define other(Y) bel(r(Y)).
+            if both(Y), other(X) then print(Y/X) + exit-module. } }",
+    );
+    assert_eq!(printed(&run(&mut a, 2)), ["1/5"]);
+}
+
+#[test]
+fn linear_stops_at_first_rule_that_acts() {
+    let mut a = agent(
+        "init module { beliefs { p. } }
+         main module { program {
+            if true then adopt(p) + print(never).
+            if true then print(first).
+            if true then print(second). } }",
+    );
+    let outs = run(&mut a, 2);
+    assert_eq!(outs[0].printed, ["first"]);
+    assert_eq!(outs[1].printed, ["first"]);
+}
+
+#[test]
+fn linearall_applies_every_rule_in_one_pass() {
+    let mut a = agent(
+        "event module { program {
+            if true then print(one).
+            if true then print(two). } }
+         main module { program { if true then exit-module. } }",
+    );
+    assert_eq!(step(&mut a, &["tick"], &[]).printed, ["one", "two"]);
+}
+
+#[test]
+fn linearall_main_starts_a_new_cycle_between_acting_rules() {
+    let mut a = agent(
+        "main module [exit=always] { program [order=linearall] {
+            if true then print(one).
+            if true then print(two). } }",
+    );
+    let outs = run(&mut a, 3);
+    assert_eq!(outs[0].printed, ["one"]);
+    assert_eq!(outs[1].printed, ["two"]);
+    // The pass ends (and main exits) at the start of the following cycle.
+    assert!(outs[2].stopped.is_some(), "main exits after its one pass");
+}
+
+#[test]
+fn forall_computes_answers_once() {
+    let mut a = agent(
+        "init module { beliefs { p(1). p(2). p(3). } }
+         main module { program {
+            forall bel(p(X)) do delete(p(1)) + delete(p(2)) + delete(p(3)) + print(X).
+            if true then exit-module. } }",
+    );
+    assert_eq!(run(&mut a, 1)[0].printed, ["1", "2", "3"]);
+    assert!(beliefs(&a).is_empty());
+}
+
+#[test]
+fn listall_binds_all_answers_and_does_not_fire_on_none() {
+    let mut a = agent(
+        "init module { beliefs { p(1). p(2). p(3). } }
+         main module { program {
+            listall L <- bel(q(X)) do print(none).
+            listall L <- bel(p(X)) do print(L).
+            if true then exit-module. } }",
+    );
+    assert_eq!(run(&mut a, 1)[0].printed, ["[1,2,3]"]);
+}
+
+#[test]
+fn if_picks_an_answer_whose_action_runs() {
+    for seed in 0..8 {
+        let mut a = agent_with(
+            "init module { beliefs { p(1). p(2). p(3). ok(2). }
+                           actionspec { act(X) @int { pre { ok(X) } post { done(X) } } } }
+             main module { program { if bel(p(X)) then act(X). } }",
+            "a",
+            &[],
+            seed,
+        );
+        run(&mut a, 1);
+        assert!(beliefs(&a).contains(&"done(2)".to_string()), "seed {seed}");
+    }
+}
+
+#[test]
+fn if_choice_depends_on_the_seed_only() {
+    let src = "init module { beliefs { p(1). p(2). p(3). p(4). p(5). p(6). } }
+               main module { program { if bel(p(X)) then print(X). } }";
+    let pick = |seed| printed(&run(&mut agent_with(src, "a", &[], seed), 6));
+    assert_eq!(pick(7), pick(7));
+    let all: std::collections::BTreeSet<Vec<String>> = (0..10).map(pick).collect();
+    assert!(all.len() > 1, "different seeds give different choices");
+}
+
+#[test]
+fn exit_nogoals_stops_main_when_goals_are_achieved() {
+    let mut a = agent(
+        "init module { goals { done. } }
+         main module [exit=nogoals] { program { if a-goal(done) then insert(done). } }",
+    );
+    let outs = run(&mut a, 3);
+    assert!(goals(&a).is_empty());
+    assert!(outs[0].stopped.is_none());
+    assert!(
+        outs[1].stopped.is_some(),
+        "exit is checked when the pass ends"
+    );
+}
+
+#[test]
+fn exit_noaction_and_exit_module_in_nested_block() {
+    let mut a = agent(
+        "init module { beliefs { n(0). } }
+         main module { program {
+            if bel(n(N), N < 3) then count.
+            if true then blocky.
+            if true then print(end) + exit-module. } }
+         module count [exit=noaction] { program {
+            if bel(n(N), N < 3, M is N + 1) then delete(n(N)) + insert(n(M)). } }
+         module blocky { program {
+            if true then { if true then log(inblock). if true then exit-module. if true then print(unreached). }
+            if true then print(unreached2). } }",
+    );
+    let outs = run(&mut a, 20);
+    assert_eq!(beliefs(&a), ["n(3)"]);
+    assert_eq!(printed(&outs), ["end"]);
+}
+
+#[test]
+fn focus_new_gives_a_fresh_goal_base() {
+    let mut a = agent(
+        "init module { goals { g(outer). } }
+         main module { program { if true then sub + exit-module. } }
+         module sub [focus=new] { goals { g(inner). }
+            program [order=linearall] {
+                forall goal(g(G)) do print(G).
+                if self.goal(g(outer)) then print(top_level_seen). } }",
+    );
+    let outs = run(&mut a, 3);
+    assert_eq!(printed(&outs), ["inner", "top_level_seen"]);
+    assert_eq!(goals(&a), ["g(outer)"]);
+}
+
+#[test]
+fn focus_select_focuses_on_the_goal_that_made_the_rule_true() {
+    for seed in 0..6 {
+        let mut a = agent_with(
+            "init module { goals { item(1). item(2). item(3). } }
+             main module { program { if a-goal(item(X)), bel(X > 1) then handle + exit-module. } }
+             module handle [focus=select] { program { forall goal(item(Y)) do print(Y). } }",
+            "a",
+            &[],
+            seed,
+        );
+        let p = printed(&run(&mut a, 2));
+        assert_eq!(p.len(), 1, "one goal in focus");
+        assert!(p[0] == "2" || p[0] == "3", "{p:?}");
+    }
+}
+
+#[test]
+fn focus_filter_keeps_the_instantiated_goal_literals() {
+    let mut a = agent(
+        "init module { beliefs { pick(2). } goals { item(1), item(2). item(3). } }
+         main module { program { if a-goal(item(X)), bel(pick(X)) then handle + exit-module. } }
+         module handle [focus=filter] { program { forall goal(item(G)) do print(G). } }",
+    );
+    assert_eq!(printed(&run(&mut a, 2)), ["2"]);
+}
+
+#[test]
+fn module_parameters_are_visible_in_rules_and_goals_but_not_in_action_specs() {
+    let mut a = agent(
+        "init module { beliefs { v(1). }
+            actionspec { show @int { pre { v(X) } post { seen(X) } } } }
+         main module { program { if true then m(7) + exit-module. } }
+         module m(X) [focus=new] { goals { want(X). }
+            program [order=linearall] {
+                if goal(want(Y)) then print(Y).
+                if bel(X == 7) then show. } }",
+    );
+    let outs = run(&mut a, 4);
+    assert_eq!(printed(&outs), ["7"]);
+    assert!(
+        beliefs(&a).contains(&"seen(1)".to_string()),
+        "{:?}",
+        beliefs(&a)
+    );
+}
+
+#[test]
+fn adopt_of_a_believed_fact_does_nothing() {
+    let mut a = agent(
+        "init module { beliefs { p. } }
+         main module { program {
+            if true then adopt(p) + print(after).
+            if true then adopt(q) + adopt(q) + print(twice).
+            if true then exit-module. } }",
+    );
+    let outs = run(&mut a, 4);
+    assert!(printed(&outs).is_empty());
+    assert_eq!(goals(&a), ["q"]);
+}
+
+#[test]
+fn blind_commitment_removes_believed_goals() {
+    let mut a = agent(
+        "init module { goals { g(1), g(2). g(3). } }
+         main module { program {
+            if bel(true) then insert(g(1)) + insert(g(3)).
+            } }",
+    );
+    run(&mut a, 1);
+    assert_eq!(goals(&a), ["g(1),g(2)"]);
+}
+
+#[test]
+fn drop_removes_every_goal_that_entails_the_query() {
+    let mut a = agent(
+        "init module { goals { p(1). p(2), q. r. } }
+         main module { program { if true then drop(p(_)) + exit-module. } }",
+    );
+    run(&mut a, 1);
+    assert_eq!(goals(&a), ["r"]);
+}
+
+#[test]
+fn insert_and_delete_route_mail_facts_and_not_deletes() {
+    let mut a = agent(
+        "init module { beliefs { old. } }
+         main module { program {
+            if true then insert(not(old), new, received(b, hi)) + exit-module. } }",
+    );
+    run(&mut a, 1);
+    assert_eq!(beliefs(&a), ["new"]);
+    let mail: Vec<String> = a
+        .mental_state()
+        .mailbox
+        .facts()
+        .iter()
+        .map(|t| t.to_string())
+        .collect();
+    assert_eq!(mail, ["received(b,hi)"]);
+}
+
+#[test]
+fn messages_wrap_their_mood_and_arrive_next_cycle() {
+    let mut a = agent_with(
+        "main module { program {
+            if true then (b).send(!go(1)) + (b).send(?where(X)) + (b).send(:at(r1)) + (b).send(plain) + exit-module. } }",
+        "a",
+        &["b"],
+        1,
+    );
+    let out = a.step(&[], &[]);
+    let contents: Vec<String> = out.messages.iter().map(|m| m.content.to_string()).collect();
+    assert_eq!(contents[0], "imp(go(1))");
+    assert!(contents[1].starts_with("int(where("), "{contents:?}");
+    assert_eq!(&contents[2..], ["at(r1)", "plain"]);
+    assert!(out
+        .messages
+        .iter()
+        .all(|m| m.sender == "a" && m.receiver == "b"));
+    let mut b = agent_with(
+        "main module { program {
+            forall bel(received(S, imp(M))) do print(S/M).
+            if bel(received(a, plain)) then exit-module. } }",
+        "b",
+        &["a"],
+        1,
+    );
+    let outs = vec![b.step(&[], &out.messages)];
+    assert_eq!(printed(&outs), ["a/go(1)"]);
+}
+
+#[test]
+fn sendonce_skips_receivers_already_sent_to() {
+    let mut a = agent_with(
+        "main module { program { if true then allother.sendonce(hello). } }",
+        "a",
+        &["b", "c"],
+        1,
+    );
+    let first = a.step(&[], &[]);
+    assert_eq!(
+        first
+            .messages
+            .iter()
+            .map(|m| m.receiver.as_str())
+            .collect::<Vec<_>>(),
+        ["b", "c"]
+    );
+    let second = a.step(&[], &[]);
+    assert!(second.messages.is_empty());
+}
+
+#[test]
+fn send_selectors_all_self_variables_and_lists() {
+    let mut a = agent_with(
+        "init module { beliefs { team([b, c]). buddy(c). } }
+         main module { program {
+            if bel(team(T), buddy(B)) then all.send(x) + self.send(y) + (B).send(z) + (T).send(w) + exit-module. } }",
+        "a",
+        &["b", "c"],
+        1,
+    );
+    let out = a.step(&[], &[]);
+    let got: Vec<String> = out
+        .messages
+        .iter()
+        .map(|m| format!("{}:{}", m.receiver, m.content))
+        .collect();
+    assert_eq!(got, ["a:x", "b:x", "c:x", "a:y", "c:z", "b:w", "c:w"]);
+}
+
+#[test]
+fn unknown_receivers_are_warned_about_and_dropped() {
+    let mut a = agent("main module { program { if true then (nobody).send(hi) + exit-module. } }");
+    let out = a.step(&[], &[]);
+    assert!(out.messages.is_empty());
+    assert!(out.events.iter().any(
+        |e| matches!(e, goal::agent::Event::Warning { message } if message.contains("nobody"))
+    ));
+}
+
+#[test]
+fn event_module_runs_only_when_something_is_new() {
+    let mut a = agent(
+        "event module { program { if true then print(event). } }
+         main module { program { if bel(percept(go)) then print(main). } }",
+    );
+    let o1 = step(&mut a, &["go"], &[]);
+    assert_eq!(o1.printed, ["event", "main"]);
+    // The last cycle acted, so event runs again.
+    let o2 = step(&mut a, &["go"], &[]);
+    assert_eq!(o2.printed, ["event", "main"]);
+    // An empty batch removes the always-percept; event runs (acted), main does not act.
+    assert_eq!(step(&mut a, &[], &[]).printed, ["event"]);
+    // Nothing new now: event does not run.
+    assert!(step(&mut a, &[], &[]).printed.is_empty());
+}
+
+#[test]
+fn runtime_errors_name_file_line_rule_and_binding() {
+    let mut a = agent(
+        "init module { beliefs { p(1). } }
+main module { program {
+    if bel(p(X)) then insert(q(X, Y)). } }",
+    );
+    let out = a.step(&[], &[]);
+    match out.stopped {
+        Some(StopReason::Error(e)) => {
+            let text = e.to_string();
+            assert!(text.starts_with("test.goal:3:"), "{text}");
+            assert!(text.contains("main:3"), "{text}");
+            assert!(text.contains("X=1"), "{text}");
+        }
+        other => panic!("expected an error, got {other:?}"),
+    }
+    assert!(
+        a.step(&[], &[]).stopped.is_some(),
+        "a stopped agent stays stopped"
+    );
+}
+
+#[test]
+fn a_module_looping_without_progress_is_a_budget_error() {
+    let cfg = goal::agent::AgentConfig {
+        max_steps: 10_000,
+        ..Default::default()
+    };
+    let p = program(
+        "event module { program { if true then spin. } }
+         main module { program { if true then print(x). } }
+         module spin [exit=never] { program { if bel(nothing) then print(y). } }",
+    );
+    let mut a = goal::agent::Agent::new(p, "a", cfg);
+    let out = step(&mut a, &["tick"], &[]);
+    match out.stopped {
+        Some(StopReason::Error(e)) => assert!(e.message.contains("budget"), "{e}"),
+        other => panic!("expected a budget error, got {other:?}"),
+    }
+}
+
+#[test]
+fn env_actions_are_returned_and_post_updates_beliefs() {
+    let mut a = agent(
+        "init module { beliefs { at(r1). }
+            actionspec { goTo(R) @env { pre { at(From), From \\= R } post { not(at(From)), at(R) } } } }
+         main module { program { if bel(at(r1)) then goTo(r2). if true then exit-module. } }",
+    );
+    let outs = run(&mut a, 3);
+    assert_eq!(env_actions(&outs), ["goTo(r2)"]);
+    assert_eq!(beliefs(&a), ["at(r2)"]);
+}
+
+#[test]
+fn combos_stop_at_the_first_action_that_did_not_run() {
+    let mut a = agent(
+        "init module { actionspec { blocked @int { pre { fail } post { true } } } }
+         main module { program { if true then print(a) + blocked + print(b) + exit-module. } }",
+    );
+    let outs = run(&mut a, 3);
+    assert_eq!(outs[0].printed, ["a"]);
+    assert!(
+        outs[2].stopped.is_none(),
+        "exit-module after the failed action never runs"
+    );
+}
