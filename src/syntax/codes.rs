@@ -64,6 +64,8 @@ pub const CODES: &[(&str, &str)] = &[
     ("E0306", "a tested agent is not launched by the MAS file"),
     ("E0307", "agents of one test file have different numbers of named tests"),
     ("E0308", "the MAS file of a test has errors"),
+    ("E0309", "a test calls an action or module the tested agent does not have"),
+    ("E0310", "a test uses a macro the tested agent does not define"),
     ("E0033", "too many problems in one file: the rest are not reported"),
     ("W0001", "duplicate section: only the first one is used"),
     ("W0002", "legacy send form (`bob.send(p)` or `send(bob, p)`)"),

@@ -193,3 +193,36 @@ impl MasFile {
             })
     }
 }
+
+impl MasFile {
+    /// The agent files that an agent called `name` may run (by the launch instructions that can
+    /// create that name; several when entity-named rules are involved).
+    pub fn agent_files_for(&self, name: &str) -> Vec<&super::ast::AgentFile> {
+        let mut refs: Vec<&str> = Vec::new();
+        for inst in self.launch_rules.iter().flat_map(|r| &r.instructions) {
+            let base = match &inst.name {
+                Some(AgentName::Entity(_)) => None,
+                Some(AgentName::Given(g)) => Some(g.value.as_str()),
+                None => Some(inst.reference.value.as_str()),
+            };
+            let matches = match base {
+                None => true,
+                Some(b) if inst.count() <= 1 => name == b,
+                Some(b) => name
+                    .strip_prefix(b)
+                    .and_then(|n| n.parse::<u64>().ok())
+                    .is_some_and(|k| k >= 1 && k <= inst.count()),
+            };
+            if matches && !refs.contains(&inst.reference.value.as_str()) {
+                refs.push(inst.reference.value.as_str());
+            }
+        }
+        let mut out: Vec<&super::ast::AgentFile> = Vec::new();
+        for r in refs {
+            if let Some(f) = self.agent_files.iter().find(|f| f.reference_name() == r) {
+                out.push(f);
+            }
+        }
+        out
+    }
+}

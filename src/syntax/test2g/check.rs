@@ -123,5 +123,7 @@ pub fn check_files(test: &MasTest, base_dir: &Path) -> Vec<Diagnostic> {
             }
         }
     }
+    let mas_dir = full.parent().unwrap_or(base_dir);
+    diags.extend(super::calls::check_calls(test, &mas, mas_dir));
     diags
 }

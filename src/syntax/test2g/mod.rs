@@ -5,6 +5,7 @@
 //! (the MAS file exists and launches the tested agents).
 
 pub mod ast;
+mod calls;
 pub mod check;
 pub mod ctx;
 pub mod dump;
