@@ -68,7 +68,7 @@ use crate::env::{ActionResult, EntityInfo, Environment, InitParams, PerceptDecl}
 use crate::term::Term;
 
 /// How to set up a run besides the map.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Bw4tConfig {
     /// Seed for random content (maps without their own seed, drop placement).
     pub seed: u64,
@@ -82,19 +82,6 @@ pub struct Bw4tConfig {
     pub one_bot_per_corridor_zone: Option<bool>,
     /// Send `position` percepts.
     pub position_percepts: bool,
-}
-
-impl Default for Bw4tConfig {
-    fn default() -> Self {
-        Bw4tConfig {
-            seed: 0,
-            robots: None,
-            robot: RobotConfig::default(),
-            colorblind: Vec::new(),
-            one_bot_per_corridor_zone: None,
-            position_percepts: false,
-        }
-    }
 }
 
 /// The init parameters [`Bw4t::from_params`] understands.

@@ -73,8 +73,9 @@ impl World {
             start
         };
         let aligned = (prev.x - tc.x).abs() <= 2.0 || (prev.y - tc.y).abs() <= 2.0;
+        let room_hop = self.zones[sz].is_room() && path.len() == 2;
         let skip = !self.zones[tz].is_room()
-            && !(self.zones[sz].is_room() && path.len() == 2)
+            && !room_hop
             && aligned
             && (target - prev).norm() < (tc - prev).norm();
         if !skip {

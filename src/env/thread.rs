@@ -78,6 +78,9 @@ pub struct EnvStatus {
 
 type Batches = Vec<(String, Vec<Term>)>;
 
+/// A real-time action waiting for the next tick, with where to send its result.
+type Queued = (String, Term, Sender<Result<ActionResult, EnvError>>);
+
 enum Request {
     Info(Sender<EnvInfo>),
     Round(Vec<(String, Term)>, Sender<Result<RoundReply, EnvError>>),
@@ -244,7 +247,7 @@ fn run_real_time(mut env: Box<dyn Environment>, rx: Receiver<Request>, tps: f64)
         Duration::ZERO
     };
     let mut next = Instant::now() + period;
-    let mut queue: Vec<(String, Term, Sender<Result<ActionResult, EnvError>>)> = Vec::new();
+    let mut queue: Vec<Queued> = Vec::new();
     loop {
         // Tick first when due, so that a steady stream of requests cannot starve the clock.
         if Instant::now() >= next {
