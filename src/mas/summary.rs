@@ -8,6 +8,9 @@ pub fn table(s: &RunSummary) -> String {
     let mut o = String::new();
     let result = if s.completed {
         "completed".to_string()
+    } else if s.map.is_none() {
+        // No environment: there is no task to complete, only a reason to stop.
+        s.end.describe().to_string()
     } else {
         format!("not completed ({})", s.end.describe())
     };
