@@ -51,7 +51,10 @@ fn no_arguments_runs_the_built_in_team_from_an_empty_directory() {
     for bot in ["Bot1", "Bot2", "Bot3"] {
         let a = &stats["agents"][bot];
         assert!(a["cycles"].as_u64().is_some_and(|c| c > 0), "{bot}: {a}");
-        assert!(a["actions"].is_u64() && a["idle_ticks"].is_u64(), "{bot}: {a}");
+        assert!(
+            a["actions"].is_u64() && a["idle_ticks"].is_u64(),
+            "{bot}: {a}"
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -115,7 +118,9 @@ fn a_failing_agent_is_in_the_summary() {
             .any(|l| l.starts_with("crasher") && l.contains("error:") && l.contains("1/0")),
         "{err}"
     );
-    assert!(err.lines().any(|l| l.starts_with("worker1") && l.ends_with("stopped")));
+    assert!(err
+        .lines()
+        .any(|l| l.starts_with("worker1") && l.ends_with("stopped")));
     // Both workers print 1..20; crasher prints nothing.
     assert_eq!(text(&out.stdout).lines().count(), 40);
 }
@@ -130,5 +135,37 @@ fn a_bad_file_is_a_diagnostic_not_a_crash() {
     let out = goal(&dir, &["missing.mas2g"]);
     assert_eq!(out.status.code(), Some(1));
     assert!(text(&out.stderr).contains("missing.mas2g"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn map_and_robots_options_replace_the_defaults() {
+    let dir = temp_dir("map");
+    let out = goal(
+        &dir,
+        &[
+            "--map",
+            "tiny",
+            "--robots",
+            "2",
+            "--max-ticks",
+            "10",
+            "--stats",
+            "s.json",
+        ],
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("s.json")).expect("stats"))
+            .expect("JSON");
+    assert_eq!(stats["map"], "tiny");
+    let agents: Vec<&String> = stats["agents"]
+        .as_object()
+        .map(|o| o.keys().collect())
+        .unwrap_or_default();
+    assert_eq!(agents, ["Bot1", "Bot2"]);
+    let out = goal(&dir, &["--map", "no-such-map", "--max-ticks", "10"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(text(&out.stderr).contains("no-such-map"));
     let _ = std::fs::remove_dir_all(&dir);
 }
