@@ -4,7 +4,8 @@
 use super::kr_bridge::FactBase;
 use crate::term::{well_known as wk, Sym, Term};
 use serde::Serialize;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashSet};
+use std::sync::OnceLock;
 
 /// How the environment sends a percept (and so how long the agent keeps it).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -59,6 +60,8 @@ pub struct PerceptChanges {
 #[derive(Clone, Debug, Default)]
 pub struct PerceptBase {
     facts: FactBase,
+    /// The raw batch of the current cycle as `newpercept(P)` facts (for edge-triggered rules).
+    batch: FactBase,
 }
 
 fn wrap(p: &Term) -> Term {
@@ -71,14 +74,33 @@ impl PerceptBase {
         &self.facts
     }
 
+    /// The current cycle's raw batch as `newpercept(P)` facts.
+    pub fn batch(&self) -> &FactBase {
+        &self.batch
+    }
+
     /// True when `p` is currently perceived.
     pub fn contains(&self, p: &Term) -> bool {
         self.facts.contains(&wrap(p))
     }
 
     /// Applies one batch according to the types.
-    pub fn apply(&mut self, batch: &[Term], types: &PerceptTypes) -> PerceptChanges {
+    pub fn apply(
+        &mut self,
+        batch: &[Term],
+        types: &PerceptTypes,
+        keep_batch: bool,
+    ) -> PerceptChanges {
         let mut ch = PerceptChanges::default();
+        if !self.batch.is_empty() {
+            self.batch.clear();
+        }
+        static NEWPERCEPT: OnceLock<Sym> = OnceLock::new();
+        let newpercept = *NEWPERCEPT.get_or_init(|| Sym::intern("newpercept"));
+        for p in batch.iter().filter(|_| keep_batch) {
+            self.batch
+                .insert(Term::compound(newpercept, vec![p.clone()]));
+        }
         let mut positive: Vec<&Term> = Vec::new();
         let mut negative: Vec<&Term> = Vec::new();
         for p in batch {
@@ -90,7 +112,12 @@ impl PerceptBase {
         }
         // Predicates whose facts this batch replaces: all `Always` ones, and `OnChange` ones
         // mentioned in the batch.
-        let mentioned: Vec<(Sym, usize)> = positive.iter().filter_map(|p| p.functor()).collect();
+        let in_batch: HashSet<&Term> = positive.iter().copied().collect();
+        // Membership only (never reaches output), so ordering by id is harmless here.
+        let mut mentioned: Vec<(Sym, usize)> =
+            positive.iter().filter_map(|p| p.functor()).collect();
+        mentioned.sort_unstable();
+        mentioned.dedup();
         let stale: Vec<Term> = self
             .facts
             .iter()
@@ -102,7 +129,7 @@ impl PerceptBase {
                     _ => false,
                 }
             })
-            .filter(|f| !positive.contains(&&f.args()[0]))
+            .filter(|f| !in_batch.contains(&f.args()[0]))
             .cloned()
             .collect();
         for f in stale {
