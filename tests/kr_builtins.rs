@@ -1,7 +1,7 @@
 //! Unit tests of the native KR engine's built-ins and control constructs (error cases too),
 //! written as Prolog text read with the project's reader.
 
-use goal::kr::{Engine, FactBase, Knowledge, KrError, Limits, NativeEngine, View};
+use goal::kr::{Engine, FactBase, Knowledge, Limits, NativeEngine, View};
 use goal::syntax::prolog::Reader;
 use goal::term::Term;
 
@@ -276,6 +276,13 @@ fn lists() {
     assert_eq!(one("append([[1], [2, 3], []], L)"), "L = [1,2,3]");
     assert_eq!(one("length([a, b], N)"), "N = 2");
     assert_eq!(one("length(L, 2)"), "L = [_R0,_R1]");
+    assert_eq!(one("length([a|T], 3)"), "T = [_R0,_R1]");
+    assert_eq!(
+        ask("", "length([a|T], N), N > 2, !"),
+        ["T = [_R0,_R1], N = 3"]
+    );
+    assert_eq!(one("length(L, -1)"), "false");
+    assert_eq!(one("length(a, N)"), "false");
     assert_eq!(ask("", "length(L, N), N >= 2, !"), ["L = [_R0,_R1], N = 2"]);
     assert_eq!(
         one("nth0(1, [a, b, c], X), nth1(1, [a, b, c], Y)"),
@@ -497,4 +504,32 @@ fn between_and_misc() {
     assert_eq!(one("call(X)"), "error: error(instantiation_error,_)");
     assert_eq!(one("call(1)"), "error: error(type_error(callable,1),_)");
     assert_eq!(ask("", "X = 1 ; X = 2"), ["X = 1", "X = 2"]);
+}
+
+#[test]
+fn iso_errors_for_bad_lists() {
+    assert_eq!(
+        one("atom_chars(X, [ab])"),
+        "error: error(type_error(character,ab),atom_chars/2)"
+    );
+    assert_eq!(
+        one("atom_codes(X, [0'a|_])"),
+        "error: error(instantiation_error,atom_codes/2)"
+    );
+    assert_eq!(
+        one("atom_codes(X, [f(x)])"),
+        "error: error(type_error(integer,f(x)),atom_codes/2)"
+    );
+    assert_eq!(
+        one("findall(X, member(X, [1]), 9)"),
+        "error: error(type_error(list,9),findall/3)"
+    );
+    assert_eq!(
+        one("aggregate_all(bag(X), fail, 9)"),
+        "error: error(type_error(list,9),findall/3)"
+    );
+    assert_eq!(
+        one("findall(X, member(X, [1, 2]), [A|T])"),
+        "A = 1, T = [2]"
+    );
 }

@@ -118,12 +118,11 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
                         }
                     }
                     Cell::Ref(_) => {
-                        let l = s.a(p, 0);
                         let y = s.a(p, 1);
                         Flow::Call(goal(
                             s,
                             "$length_enum",
-                            &[l, Cell::Int(items.len() as i64), y],
+                            &[end, Cell::Int(items.len() as i64), y],
                         ))
                     }
                     other => return Err(type_error(s, "integer", other, "length", 2)),
