@@ -180,6 +180,16 @@ impl Program {
 
     /// Compiles a parsed program.
     pub fn compile(ast: &ast::AgentProgram, source: &str) -> Result<Arc<Program>, Vec<Diagnostic>> {
+        Program::compile_with(ast, source, &[])
+    }
+
+    /// Compiles a parsed program with extra knowledge clauses (e.g. from imported `.pl` files,
+    /// which the caller reads: the agent layer does no I/O).
+    pub fn compile_with(
+        ast: &ast::AgentProgram,
+        source: &str,
+        extra_knowledge: &[Term],
+    ) -> Result<Arc<Program>, Vec<Diagnostic>> {
         let c = Compiler {
             file: ast.file.clone(),
             source,
@@ -193,7 +203,7 @@ impl Program {
             callables: BTreeMap::new(),
             select_modules: Vec::new(),
         };
-        c.run(ast)
+        c.run(ast, extra_knowledge)
     }
 }
 
@@ -238,9 +248,13 @@ impl Compiler<'_> {
         ));
     }
 
-    fn run(mut self, ast: &ast::AgentProgram) -> Result<Arc<Program>, Vec<Diagnostic>> {
+    fn run(
+        mut self,
+        ast: &ast::AgentProgram,
+        extra: &[Term],
+    ) -> Result<Arc<Program>, Vec<Diagnostic>> {
         // Knowledge of every module forms one base; macros and action specs are global.
-        let mut clauses = Vec::new();
+        let mut clauses = extra.to_vec();
         for m in &ast.modules {
             clauses.extend(m.knowledge.iter().map(|l| l.term.clone()));
             if let Some(p) = &m.program {
