@@ -11,7 +11,8 @@ fn dev_play() {
     let robots: usize = std::env::var("TEAM_ROBOTS").ok().and_then(|s| s.parse().ok()).unwrap_or(1);
     let max: u64 = std::env::var("TEAM_MAX").ok().and_then(|s| s.parse().ok()).unwrap_or(8000);
     let t = std::time::Instant::now();
-    let g = play(&file, &map, robots, 1, max);
+    let seed: u64 = std::env::var("TEAM_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(1);
+    let g = play(&file, &map, robots, seed, max);
     eprintln!("{} {:?}", serde_json::to_string(&g).unwrap(), t.elapsed());
 }
 
