@@ -1,33 +1,159 @@
-//! Full BW4T games played by the reference team in `agents/bw4t/`.
+//! Full BW4T games played by the reference team (`agents/bw4t/bw4t.mas2g`, `team.goal`) and by
+//! the course-style robot (`agents/bw4t/robot.mas2g`), through the runtime's lock-step loop.
+//!
+//! Every shipped fixed map (banana, rainbow, dutch-flag) is played with 1 and with 3 robots, the
+//! random map with 3 robots and dutch-flag with 2 robots (twice, for determinism). Each game
+//! must deliver the whole sequence, without wrong deliveries or agent errors, within a tick
+//! budget; the summary is snapshotted.
 
-mod team_support;
+use goal::mas::run::{run, Quiet, RunOptions};
+use goal::mas::system::load_mas;
+use goal::mas::RunSummary;
+use serde_json::json;
+use std::path::PathBuf;
 
-use team_support::play;
+fn mas(file: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("agents/bw4t")
+        .join(file)
+}
 
-#[test]
-fn dev_play() {
-    let file = std::env::var("TEAM_FILE").unwrap_or("team.goal".into());
-    let map = std::env::var("TEAM_MAP").unwrap_or("banana".into());
-    let robots: usize = std::env::var("TEAM_ROBOTS").ok().and_then(|s| s.parse().ok()).unwrap_or(1);
-    let max: u64 = std::env::var("TEAM_MAX").ok().and_then(|s| s.parse().ok()).unwrap_or(8000);
-    let t = std::time::Instant::now();
-    let seed: u64 = std::env::var("TEAM_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(1);
-    let g = play(&file, &map, robots, seed, max);
-    eprintln!("{} {:?}", serde_json::to_string(&g).unwrap(), t.elapsed());
+/// Plays `file` on `map` with `robots` robots; stops at `budget` ticks at the latest.
+fn play(
+    file: &str,
+    map: &str,
+    robots: usize,
+    seed: u64,
+    budget: u64,
+    workers: usize,
+) -> RunSummary {
+    let sys = load_mas(&mas(file)).unwrap_or_else(|p| {
+        panic!(
+            "{}",
+            p.iter().map(|p| p.render()).collect::<Vec<_>>().join("\n")
+        )
+    });
+    let opts = RunOptions {
+        seed: Some(seed),
+        map: Some(map.to_string()),
+        robots: Some(robots),
+        max_ticks: budget,
+        workers,
+        trace_rules: false,
+        ..RunOptions::default()
+    };
+    let (summary, err) =
+        run(&sys, &opts, None, &mut Quiet).unwrap_or_else(|p| panic!("{}", p[0].render()));
+    assert_eq!(err, None, "{map} with {robots} robot(s): runtime failure");
+    summary
+}
+
+/// Asserts a complete, clean game within `budget` ticks and returns its snapshot figures.
+fn check(s: &RunSummary, map: &str, robots: usize, budget: u64) -> serde_json::Value {
+    let what = format!("{map} with {robots} robot(s)");
+    assert!(s.completed, "{what}: not completed after {} ticks", s.ticks);
+    assert!(
+        s.ticks <= budget,
+        "{what}: {} ticks > budget {budget}",
+        s.ticks
+    );
+    assert_eq!(s.deliveries.wrong, 0, "{what}: wrong deliveries");
+    assert_eq!(s.agents.len(), robots, "{what}: one agent per robot");
+    for (name, a) in &s.agents {
+        assert_eq!(a.error, None, "{what}: {name} stopped on an error");
+        assert!(a.env_actions > 0, "{what}: {name} never acted");
+    }
+    let agents: serde_json::Map<String, serde_json::Value> = s
+        .agents
+        .iter()
+        .map(|(n, a)| {
+            (
+                n.clone(),
+                json!({ "cycles": a.cycles, "env_actions": a.env_actions, "messages_sent": a.messages_sent }),
+            )
+        })
+        .collect();
+    json!({
+        "map": map,
+        "robots": robots,
+        "seed": s.seed,
+        "completed": s.completed,
+        "ticks": s.ticks,
+        "deliveries": s.deliveries,
+        "messages": s.messages,
+        "agents": agents,
+    })
+}
+
+/// Tick budgets: a single robot explores and fetches alone; a team shares the work.
+fn budget(robots: usize) -> u64 {
+    match robots {
+        1 => 6_000,
+        2 => 4_000,
+        _ => 3_000,
+    }
+}
+
+fn team_game(map: &str, robots: usize, seed: u64) -> serde_json::Value {
+    let b = budget(robots);
+    let s = play("bw4t.mas2g", map, robots, seed, b, 2);
+    if robots == 1 {
+        assert_eq!(s.messages, 0, "a lone robot has nobody to talk to");
+    } else {
+        assert!(s.messages > 0, "{map}: a team coordinates by messages");
+    }
+    check(&s, map, robots, b)
 }
 
 #[test]
-fn dev_solo() {
-    let Ok(path) = std::env::var("TEAM_SOLO") else { return };
-    let src = std::fs::read_to_string(&path).unwrap();
-    let prog = match goal::agent::Program::from_source(&path, &src) {
-        Ok(p) => p,
-        Err(d) => panic!("{:?}", d),
-    };
-    let mut a = goal::agent::Agent::new(prog, "solo", goal::agent::AgentConfig::default());
-    for _ in 0..12 {
-        let out = a.step(&[], &[]);
-        for e in &out.events { eprintln!("{e:?}"); }
-        for l in &out.printed { eprintln!("PRINT {l}"); }
-    }
+fn team_banana_1_robot() {
+    insta::assert_json_snapshot!(team_game("banana", 1, 1));
+}
+
+#[test]
+fn team_banana_3_robots() {
+    insta::assert_json_snapshot!(team_game("banana", 3, 1));
+}
+
+#[test]
+fn team_rainbow_1_robot() {
+    insta::assert_json_snapshot!(team_game("rainbow", 1, 1));
+}
+
+#[test]
+fn team_rainbow_3_robots() {
+    insta::assert_json_snapshot!(team_game("rainbow", 3, 1));
+}
+
+#[test]
+fn team_dutch_flag_1_robot() {
+    insta::assert_json_snapshot!(team_game("dutch-flag", 1, 1));
+}
+
+#[test]
+fn team_dutch_flag_3_robots() {
+    insta::assert_json_snapshot!(team_game("dutch-flag", 3, 1));
+}
+
+#[test]
+fn team_random_3_robots() {
+    insta::assert_json_snapshot!(team_game("random", 3, 5));
+}
+
+/// The same seed gives the same game, whether the agents run on one worker thread or two.
+#[test]
+fn team_is_deterministic() {
+    let b = budget(2);
+    let one = play("bw4t.mas2g", "dutch-flag", 2, 3, b, 1);
+    let two = play("bw4t.mas2g", "dutch-flag", 2, 3, b, 2);
+    assert_eq!(one.to_json(), two.to_json());
+    insta::assert_json_snapshot!(check(&one, "dutch-flag", 2, b));
+}
+
+/// The course-style robot finishes the default map on its own.
+#[test]
+fn course_robot_finishes_banana_alone() {
+    let b = 7_000;
+    let s = play("robot.mas2g", "banana", 1, 1, b, 1);
+    insta::assert_json_snapshot!(check(&s, "banana", 1, b));
 }
