@@ -265,3 +265,11 @@ fn cycle_limit_stops_a_single_agent() {
     assert_eq!(s.ticks, 10);
     assert_eq!(obs.printed.len(), 10);
 }
+
+#[test]
+fn summary_table_of_a_failing_system() {
+    let (s, _, _) = run_file("failing.mas2g", &opts(3, 1000));
+    let root = env!("CARGO_MANIFEST_DIR");
+    let table = goal::mas::summary::table(&s).replace(root, "<root>");
+    insta::assert_snapshot!(table);
+}
