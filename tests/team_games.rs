@@ -2,7 +2,8 @@
 //! the course-style robot (`agents/bw4t/robot.mas2g`), through the runtime's lock-step loop.
 //!
 //! Every shipped fixed map (banana, rainbow, dutch-flag) is played with 1 and with 3 robots, the
-//! random map with 3 robots and dutch-flag with 2 robots (twice, for determinism). Each game
+//! random map with 3 robots, dutch-flag with 2 robots (twice, for determinism) and the small
+//! `tiny` map with 2 robots. Each game
 //! must deliver the whole sequence, without wrong deliveries or agent errors, within a tick
 //! budget; the summary is snapshotted.
 
@@ -138,6 +139,16 @@ fn team_dutch_flag_3_robots() {
 #[test]
 fn team_random_3_robots() {
     insta::assert_json_snapshot!(team_game("random", 3, 5));
+}
+
+/// A small map unlike the standard layout: one room has two doors' worth of neighbours and the
+/// drop zone's neighbour is a plain hall. The team finds rooms by name and needs no fixed
+/// place names besides `DropZone`.
+#[test]
+fn team_tiny_2_robots() {
+    let b = 1_000;
+    let s = play("bw4t.mas2g", "tiny", 2, 1, b, 2);
+    insta::assert_json_snapshot!(check(&s, "tiny", 2, b));
 }
 
 /// The same seed gives the same game, whether the agents run on one worker thread or two.
