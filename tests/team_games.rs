@@ -3,20 +3,36 @@
 //!
 //! Every shipped fixed map (banana, rainbow, dutch-flag) is played with 1 and with 3 robots, the
 //! random map with 3 robots, dutch-flag with 2 robots (twice, for determinism) and the small
-//! `tiny` map with 2 robots. Each game
-//! must deliver the whole sequence, without wrong deliveries or agent errors, within a tick
-//! budget; the summary is snapshotted.
+//! `tiny` map with 2 robots. Each game must deliver the whole sequence, without wrong
+//! deliveries or agent errors, within a tick budget; the summary is snapshotted.
 
 use goal::mas::run::{run, Quiet, RunOptions};
 use goal::mas::system::load_mas;
+use goal::mas::trace::TraceWriter;
 use goal::mas::RunSummary;
 use serde_json::json;
+use std::io::Write;
 use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
 
 fn mas(file: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("agents/bw4t")
         .join(file)
+}
+
+/// A `Write` into a shared buffer, to read a run's trace afterwards.
+#[derive(Clone, Default)]
+struct Buf(Arc<Mutex<Vec<u8>>>);
+
+impl Write for Buf {
+    fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
+        self.0.lock().expect("buffer").extend_from_slice(b);
+        Ok(b.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
 }
 
 /// Plays `file` on `map` with `robots` robots; stops at `budget` ticks at the latest.
@@ -27,6 +43,19 @@ fn play(
     seed: u64,
     budget: u64,
     workers: usize,
+) -> RunSummary {
+    play_traced(file, map, robots, seed, budget, workers, None)
+}
+
+/// [`play`], writing the trace into `trace` when given.
+fn play_traced(
+    file: &str,
+    map: &str,
+    robots: usize,
+    seed: u64,
+    budget: u64,
+    workers: usize,
+    trace: Option<Buf>,
 ) -> RunSummary {
     let sys = load_mas(&mas(file)).unwrap_or_else(|p| {
         panic!(
@@ -43,8 +72,9 @@ fn play(
         trace_rules: false,
         ..RunOptions::default()
     };
+    let writer = trace.map(|b| TraceWriter::new(Box::new(b)));
     let (summary, err) =
-        run(&sys, &opts, None, &mut Quiet).unwrap_or_else(|p| panic!("{}", p[0].render()));
+        run(&sys, &opts, writer, &mut Quiet).unwrap_or_else(|p| panic!("{}", p[0].render()));
     assert_eq!(err, None, "{map} with {robots} robot(s): runtime failure");
     summary
 }
@@ -111,9 +141,50 @@ fn team_banana_1_robot() {
     insta::assert_json_snapshot!(team_game("banana", 1, 1));
 }
 
+/// Three robots on banana (six yellow blocks in six rooms): besides the figures, the trace shows
+/// the team talking in the seed's message vocabulary and getting past closed doors.
 #[test]
 fn team_banana_3_robots() {
-    insta::assert_json_snapshot!(team_game("banana", 3, 1));
+    let b = budget(3);
+    let buf = Buf::default();
+    let s = play_traced("bw4t.mas2g", "banana", 3, 1, b, 2, Some(buf.clone()));
+    let figures = check(&s, "banana", 3, b);
+    let text = String::from_utf8(buf.0.lock().expect("buffer").clone()).expect("utf-8");
+    let records: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("a JSON object per line"))
+        .collect();
+    // Every kind of message the team uses is sent, and each is in the BW4T vocabulary.
+    let messages: Vec<&serde_json::Value> =
+        records.iter().filter(|r| r["type"] == "message").collect();
+    for kind in [
+        "imp(in(",
+        "imp(pickedUpFrom(",
+        "pickedUpFrom(",
+        "putDown(",
+        "at(",
+        "checked(",
+    ] {
+        assert!(
+            messages
+                .iter()
+                .any(|m| m["content"].as_str().is_some_and(|c| c.starts_with(kind))),
+            "no {kind}...) message"
+        );
+    }
+    for m in &messages {
+        assert!(
+            m["english"].is_string(),
+            "not in the vocabulary: {}",
+            m["content"]
+        );
+    }
+    // Robots met closed doors (an occupied drop zone or room) and still finished.
+    assert!(
+        text.contains("\"percept\":\"state(collided)\""),
+        "no robot was ever stopped by a closed door"
+    );
+    insta::assert_json_snapshot!(figures);
 }
 
 #[test]
