@@ -1,11 +1,11 @@
-//! A full BW4T game with the built-in default team (3 robots, default map) completes within a
-//! tick budget; the summary is snapshotted.
+//! A full BW4T game with the built-in default team (the reference team, 3 robots, default map)
+//! completes within a tick budget; the summary is snapshotted.
 
 use goal::mas::run::{run, Quiet, RunOptions};
 use goal::mas::{default_team, EndReason};
 
 /// Ticks the built-in team may take for the default map.
-const BUDGET: u64 = 6_000;
+const BUDGET: u64 = 3_000;
 
 #[test]
 fn the_default_team_completes_a_game_within_budget() {
