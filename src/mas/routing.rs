@@ -1,0 +1,76 @@
+//! Message routing: messages collected in a round are delivered for the next round in (sender
+//! name, sequence) order; messages to unknown agents are reported, not delivered.
+
+use crate::agent::Message;
+use std::collections::BTreeMap;
+
+/// Routes messages between the agents of a system (index = position in name order).
+#[derive(Clone, Debug)]
+pub struct Router {
+    index: BTreeMap<String, usize>,
+}
+
+impl Router {
+    /// A router for agents `names` (index = position).
+    pub fn new(names: &[String]) -> Router {
+        Router {
+            index: names
+                .iter()
+                .enumerate()
+                .map(|(i, n)| (n.clone(), i))
+                .collect(),
+        }
+    }
+
+    /// The index of agent `name`.
+    pub fn index(&self, name: &str) -> Option<usize> {
+        self.index.get(name).copied()
+    }
+
+    /// Appends `sent` (each sender's messages in sending order) to the receivers' inboxes, in
+    /// (sender name, sequence) order; returns the messages whose receiver is unknown.
+    pub fn route(&self, mut sent: Vec<Message>, inbox: &mut [Vec<Message>]) -> Vec<Message> {
+        // Stable: keeps each sender's own sequence.
+        sent.sort_by(|a, b| a.sender.cmp(&b.sender));
+        let mut unknown = Vec::new();
+        for m in sent {
+            match self.index(&m.receiver).and_then(|i| inbox.get_mut(i)) {
+                Some(b) => b.push(m),
+                None => unknown.push(m),
+            }
+        }
+        unknown
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::term::Term;
+
+    fn m(s: &str, r: &str, c: &str) -> Message {
+        Message {
+            sender: s.into(),
+            receiver: r.into(),
+            content: Term::atom(c),
+        }
+    }
+
+    #[test]
+    fn sender_then_sequence_order_and_unknown_receivers() {
+        let router = Router::new(&["a".into(), "b".into(), "c".into()]);
+        let mut inbox = vec![Vec::new(); 3];
+        let sent = vec![
+            m("c", "a", "c1"),
+            m("b", "a", "b1"),
+            m("c", "a", "c2"),
+            m("b", "zed", "lost"),
+            m("b", "a", "b2"),
+        ];
+        let unknown = router.route(sent, &mut inbox);
+        let got: Vec<String> = inbox[0].iter().map(|m| m.content.to_string()).collect();
+        assert_eq!(got, ["b1", "b2", "c1", "c2"]);
+        assert_eq!(unknown, vec![m("b", "zed", "lost")]);
+        assert!(inbox[1].is_empty() && inbox[2].is_empty());
+    }
+}

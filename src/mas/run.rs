@@ -1,0 +1,570 @@
+//! Running a system in lock-step rounds: the environment publishes one tick's percepts, every
+//! agent with new input runs one cycle (in parallel on the worker pool), actions go to the
+//! environment in agent-name order and messages are delivered for the next round in (sender,
+//! sequence) order. The result depends only on the programs, the map and the seed.
+
+use super::launch::{Launch, Launcher};
+use super::routing::Router;
+use super::scheduler::{Job, Pool};
+use super::stats::{AgentStats, Deliveries, EndReason, RunSummary};
+use super::system::{MasSystem, Problem};
+use super::trace::{AgentInfo, TraceWriter};
+use crate::agent::{
+    Agent, AgentConfig, Event, Message, PerceptType, PerceptTypes, StopReason, TraceLevel,
+};
+use crate::bw4t::Bw4t;
+use crate::diag::Diagnostic;
+use crate::env::thread::{EnvHandle, EnvInfo, Mode};
+use crate::env::{ActionResult, InitParams};
+use crate::term::{Style, Term};
+use std::collections::BTreeMap;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// How to run a system.
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// The run seed (overrides the MAS file's `seed`); default: the file's, else 0.
+    pub seed: Option<u64>,
+    /// A map (built-in name or file) replacing the MAS file's.
+    pub map: Option<String>,
+    /// Number of robots in the environment.
+    pub robots: Option<usize>,
+    /// Stop after this many ticks (rounds without an environment).
+    pub max_ticks: u64,
+    /// Worker threads for the agents.
+    pub workers: usize,
+    /// Do not step agents that have nothing new (the trace is the same either way).
+    pub skip_idle: bool,
+    /// Pace the rounds to this many per second (for watching); `None`: as fast as possible.
+    pub realtime: Option<f64>,
+    /// Stop after this much wall time.
+    pub time_limit: Option<Duration>,
+    /// Record every rule evaluation (needed for a full trace); otherwise only changes.
+    pub trace_rules: bool,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        RunOptions {
+            seed: None,
+            map: None,
+            robots: None,
+            max_ticks: 10_000,
+            workers: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            skip_idle: true,
+            realtime: None,
+            time_limit: None,
+            trace_rules: true,
+        }
+    }
+}
+
+/// Progress of a running system.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Progress {
+    pub round: u64,
+    pub tick: u64,
+    pub deliveries: Deliveries,
+    pub messages: u64,
+}
+
+/// Receives what a run produces besides the trace (all methods optional).
+pub trait Observer {
+    /// A line an agent printed with `print/1`.
+    fn printed(&mut self, _agent: &str, _line: &str) {}
+    /// A message sent in round `round` (`delivered` false when the receiver is unknown).
+    fn message(&mut self, _round: u64, _m: &Message, _delivered: bool) {}
+    /// A runtime warning.
+    fn warning(&mut self, _text: &str) {}
+    /// The environment refused an action.
+    fn action_failed(&mut self, _agent: &str, _action: &Term, _reason: &str) {}
+    /// True when the observer wants [`Observer::progress`] calls (they cost a status query).
+    fn wants_progress(&self) -> bool {
+        false
+    }
+    /// Progress, every few rounds.
+    fn progress(&mut self, _p: &Progress) {}
+}
+
+/// An observer that ignores everything.
+pub struct Quiet;
+impl Observer for Quiet {}
+
+/// Runs `system` to its end; the trace (if any) is written as the run goes.
+pub fn run(
+    system: &MasSystem,
+    opts: &RunOptions,
+    trace: Option<TraceWriter>,
+    obs: &mut dyn Observer,
+) -> Result<(RunSummary, Option<String>), Vec<Problem>> {
+    let mut setup = Setup::new(system, opts, obs)?;
+    let summary = setup.run_loop(trace, obs);
+    Ok(summary)
+}
+
+struct Slot {
+    name: String,
+    reference: String,
+    entity: Option<String>,
+    stats: AgentStats,
+    acted: bool,
+    percepts: Vec<Term>,
+    inbox: Vec<Message>,
+}
+
+struct Setup<'a> {
+    system: &'a MasSystem,
+    opts: &'a RunOptions,
+    seed: u64,
+    map: Option<String>,
+    env: Option<EnvHandle>,
+    pool: Pool,
+    slots: Vec<Slot>,
+    router: Router,
+    by_entity: BTreeMap<String, Vec<usize>>,
+    initial: Vec<(String, Vec<Term>)>,
+}
+
+fn problem(code: &str, msg: String) -> Vec<Problem> {
+    vec![Problem::bare(Diagnostic::error(code, msg, "run", 0..0))]
+}
+
+/// A per-agent seed from the run seed and the agent's name (FNV-1a, then splitmix64).
+pub fn agent_seed(seed: u64, name: &str) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in name.bytes() {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    let mut z = seed ^ h;
+    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+fn percept_types(info: &EnvInfo) -> PerceptTypes {
+    use crate::env::PerceptType as E;
+    PerceptTypes::new(info.declarations.iter().map(|d| {
+        let k = match d.kind {
+            E::Once => PerceptType::Once,
+            E::OnChange => PerceptType::OnChange,
+            E::OnChangeWithNegation => PerceptType::OnChangeNeg,
+            E::Always => PerceptType::Always,
+        };
+        ((d.name.clone(), d.arity), k)
+    }))
+}
+
+fn text_of(t: &Term) -> String {
+    t.to_text(Style::WRITE)
+}
+
+/// The environment's parameters with the run options applied; unknown keys are dropped with
+/// a warning (the BW4T of the Java distribution ignores them too).
+fn env_params(
+    params: &InitParams,
+    opts: &RunOptions,
+    obs: &mut dyn Observer,
+) -> (InitParams, u64, String) {
+    let mut p = InitParams::new();
+    for (k, v) in params {
+        if crate::bw4t::INIT_PARAMS.contains(&k.as_str()) {
+            p.insert(k.clone(), v.clone());
+        } else {
+            obs.warning(&format!(
+                "init parameter `{k}` is not used by bw4t; ignored"
+            ));
+        }
+    }
+    if let Some(s) = opts.seed {
+        p.insert("seed".into(), Term::Int(s as i64));
+    }
+    let seed = match p.get("seed") {
+        Some(Term::Int(i)) => *i as u64,
+        _ => 0,
+    };
+    p.insert("seed".into(), Term::Int(seed as i64));
+    if let Some(m) = &opts.map {
+        p.insert("map".into(), Term::string(m));
+    }
+    if let Some(r) = opts.robots {
+        p.insert("robots".into(), Term::Int(r as i64));
+    }
+    let map = p
+        .get("map")
+        .map(text_of)
+        .unwrap_or_else(|| crate::bw4t::map::DEFAULT_MAP.to_string());
+    (p, seed, map)
+}
+
+impl<'a> Setup<'a> {
+    fn new(
+        system: &'a MasSystem,
+        opts: &'a RunOptions,
+        obs: &mut dyn Observer,
+    ) -> Result<Setup<'a>, Vec<Problem>> {
+        let mut launcher = Launcher::new(&system.rules);
+        let mut launches: Vec<Launch> = launcher.unconditional();
+        let (env, info, seed, map) = match &system.env {
+            Some(params) => {
+                let (p, seed, map) = env_params(params, opts, obs);
+                let world = Bw4t::from_params(&p)
+                    .map_err(|ds| ds.into_iter().map(Problem::bare).collect::<Vec<_>>())?;
+                for w in world.warnings() {
+                    obs.warning(w);
+                }
+                let handle = EnvHandle::spawn(Box::new(world), Mode::LockStep);
+                let info = handle
+                    .info()
+                    .map_err(|e| problem("M0030", format!("environment: {e}")))?;
+                (Some(handle), Some(info), seed, Some(map))
+            }
+            None => (None, None, opts.seed.unwrap_or(0), None),
+        };
+        if let Some(info) = &info {
+            for e in &info.entities {
+                match launcher.entity(e) {
+                    Some(l) => launches.extend(l),
+                    None => obs.warning(&format!(
+                        "no launch rule for entity {} (type {}); it stays without an agent",
+                        e.name, e.kind
+                    )),
+                }
+            }
+        }
+        launches.sort_by(|a, b| a.name.cmp(&b.name));
+        if launches.is_empty() {
+            return Err(problem("M0031", "no agent was launched".into()));
+        }
+        let names: Vec<String> = launches.iter().map(|l| l.name.clone()).collect();
+        let types = Arc::new(info.as_ref().map(percept_types).unwrap_or_default());
+        let mut agents = Vec::new();
+        let mut slots = Vec::new();
+        let mut by_entity: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+        for (i, l) in launches.iter().enumerate() {
+            let prog = system.programs.get(&l.reference).ok_or_else(|| {
+                problem(
+                    "M0032",
+                    format!("launch of {}: no agent file `{}`", l.name, l.reference),
+                )
+            })?;
+            let config = AgentConfig {
+                seed: agent_seed(seed, &l.name),
+                agents: names.clone(),
+                percept_types: types.clone(),
+                trace: if opts.trace_rules {
+                    TraceLevel::Rules
+                } else {
+                    TraceLevel::Changes
+                },
+                ..AgentConfig::default()
+            };
+            agents.push(Agent::new(prog.clone(), &l.name, config));
+            if let Some(e) = &l.entity {
+                by_entity.entry(e.clone()).or_default().push(i);
+            }
+            slots.push(Slot {
+                name: l.name.clone(),
+                reference: l.reference.clone(),
+                entity: l.entity.clone(),
+                stats: AgentStats {
+                    entity: l.entity.clone(),
+                    ..AgentStats::default()
+                },
+                acted: true,
+                percepts: Vec::new(),
+                inbox: Vec::new(),
+            });
+        }
+        let initial = match &env {
+            Some(h) => h
+                .perceive(&[])
+                .map_err(|e| problem("M0030", format!("environment: {e}")))?,
+            None => Vec::new(),
+        };
+        let pool = Pool::new(agents, opts.workers).map_err(|e| problem("M0033", e.0))?;
+        Ok(Setup {
+            system,
+            opts,
+            seed,
+            map,
+            env,
+            pool,
+            router: Router::new(&names),
+            slots,
+            by_entity,
+            initial,
+        })
+    }
+
+    fn deliver_percepts(&mut self, batches: Vec<(String, Vec<Term>)>) {
+        for (entity, batch) in batches {
+            if let Some(ids) = self.by_entity.get(&entity) {
+                for &i in ids {
+                    if !self.slots[i].stats.stopped {
+                        self.slots[i].percepts.extend(batch.iter().cloned());
+                    }
+                }
+            }
+        }
+    }
+
+    fn env_status(&self) -> (Deliveries, Option<serde_json::Value>) {
+        let Some(h) = &self.env else {
+            return (Deliveries::default(), None);
+        };
+        match h.status() {
+            Ok(s) => {
+                let get = |k: &str| s.stats.get(k).and_then(|v| v.as_u64()).unwrap_or(0);
+                let d = Deliveries {
+                    right: get("deliveries_right"),
+                    wrong: get("deliveries_wrong"),
+                };
+                (d, Some(s.stats))
+            }
+            Err(_) => (Deliveries::default(), None),
+        }
+    }
+
+    fn run_loop(
+        &mut self,
+        mut trace: Option<TraceWriter>,
+        obs: &mut dyn Observer,
+    ) -> (RunSummary, Option<String>) {
+        let infos = self.agent_infos();
+        if let Some(t) = trace.as_mut() {
+            t.header(
+                &self.system.file,
+                self.env.as_ref().map(|_| "bw4t"),
+                self.seed,
+                self.map.as_deref(),
+                &infos,
+            );
+        }
+        let initial = std::mem::take(&mut self.initial);
+        self.deliver_percepts(initial);
+        let start = Instant::now();
+        let mut round: u64 = 0;
+        let mut tick: u64 = 0;
+        let mut messages: u64 = 0;
+        let mut last_progress = Instant::now();
+        let end = loop {
+            if self.opts.time_limit.is_some_and(|l| start.elapsed() >= l) {
+                break EndReason::TimeLimit;
+            }
+            let mut jobs: Vec<Job> = Vec::new();
+            let mut fresh = vec![false; self.slots.len()];
+            for (i, s) in self.slots.iter_mut().enumerate() {
+                if s.stats.stopped {
+                    s.percepts.clear();
+                    s.inbox.clear();
+                    continue;
+                }
+                let new = s.acted || !s.percepts.is_empty() || !s.inbox.is_empty();
+                fresh[i] = new;
+                if new || !self.opts.skip_idle {
+                    jobs.push((
+                        i,
+                        std::mem::take(&mut s.percepts),
+                        std::mem::take(&mut s.inbox),
+                    ));
+                } else {
+                    s.stats.idle_ticks += 1;
+                }
+            }
+            if jobs.is_empty() && self.env.is_none() {
+                break if self.slots.iter().all(|s| s.stats.stopped) {
+                    EndReason::AllStopped
+                } else {
+                    EndReason::Idle
+                };
+            }
+            let outputs = match self.pool.round(jobs) {
+                Ok(o) => o,
+                Err(e) => {
+                    obs.warning(&e.0);
+                    break EndReason::Failure;
+                }
+            };
+            let mut actions: Vec<(String, Term)> = Vec::new();
+            let mut actors: Vec<usize> = Vec::new();
+            let mut sent: Vec<Message> = Vec::new();
+            for (i, out) in outputs {
+                let s = &mut self.slots[i];
+                s.stats.cycles += 1;
+                let performed = out
+                    .events
+                    .iter()
+                    .filter(|e| matches!(e, Event::ActionPerformed { .. }))
+                    .count() as u64;
+                s.stats.actions += performed;
+                s.acted = performed > 0 || !out.env_actions.is_empty() || !out.messages.is_empty();
+                let idle = !fresh[i] && !s.acted && out.printed.is_empty() && out.stopped.is_none();
+                if idle {
+                    // A cycle with nothing new that did nothing: as if it was skipped.
+                    s.stats.idle_ticks += 1;
+                } else if let Some(t) = trace.as_mut() {
+                    t.cycle(round, tick, &s.name, &out.events);
+                }
+                for e in &out.events {
+                    if let Event::Warning { message } = e {
+                        obs.warning(&format!("{}: {message}", s.name));
+                    }
+                }
+                for line in &out.printed {
+                    obs.printed(&s.name, line);
+                }
+                for a in out.env_actions {
+                    match &s.entity {
+                        Some(e) => {
+                            s.stats.env_actions += 1;
+                            actions.push((e.clone(), a));
+                            actors.push(i);
+                        }
+                        None => {
+                            let msg =
+                                format!("environment action {a} by an agent without an entity");
+                            if let Some(t) = trace.as_mut() {
+                                t.warning(round, tick, &s.name, &msg);
+                            }
+                            s.stats.stopped = true;
+                            s.stats.error = Some(msg);
+                            break;
+                        }
+                    }
+                }
+                s.stats.messages_sent += out.messages.len() as u64;
+                sent.extend(out.messages);
+                match out.stopped {
+                    Some(StopReason::Error(e)) => {
+                        s.stats.stopped = true;
+                        s.stats.error = Some(e.to_string());
+                        obs.warning(&format!("agent {} stopped: {e}", s.name));
+                    }
+                    Some(StopReason::MainExited) => s.stats.stopped = true,
+                    None => {}
+                }
+            }
+            // Messages: (sender, sequence) order; a stable sort keeps each sender's sequence.
+            sent.sort_by(|a, b| a.sender.cmp(&b.sender));
+            messages += sent.len() as u64;
+            for m in &sent {
+                let known = self.router.index(&m.receiver).is_some();
+                if let Some(t) = trace.as_mut() {
+                    t.message(round, tick, m, known);
+                }
+                obs.message(round, m, known);
+            }
+            let mut inboxes: Vec<Vec<Message>> = vec![Vec::new(); self.slots.len()];
+            for m in self.router.route(sent, &mut inboxes) {
+                obs.warning(&format!(
+                    "message {} from {} to unknown agent {} dropped",
+                    m.content, m.sender, m.receiver
+                ));
+            }
+            for (s, b) in self.slots.iter_mut().zip(inboxes) {
+                if !s.stats.stopped {
+                    s.inbox.extend(b);
+                }
+            }
+            let mut finished = false;
+            match &self.env {
+                Some(h) => match h.round(actions.clone()) {
+                    Ok(reply) => {
+                        if let Some(t) = trace.as_mut() {
+                            for ((k, (entity, result)), (_, a)) in
+                                reply.results.iter().enumerate().zip(&actions)
+                            {
+                                let agent = &self.slots[actors[k]].name;
+                                t.action(round, tick, agent, entity, &a.to_string(), result);
+                            }
+                        }
+                        for (k, (_, result)) in reply.results.iter().enumerate() {
+                            if let ActionResult::Failed(m) = result {
+                                obs.action_failed(&self.slots[actors[k]].name, &actions[k].1, m);
+                            }
+                        }
+                        tick = reply.tick;
+                        finished = reply.finished;
+                        self.deliver_percepts(reply.percepts);
+                    }
+                    Err(e) => {
+                        obs.warning(&format!("environment: {e}"));
+                        break EndReason::Failure;
+                    }
+                },
+                None => tick += 1,
+            }
+            round += 1;
+            if obs.wants_progress() && last_progress.elapsed() >= Duration::from_millis(100) {
+                last_progress = Instant::now();
+                let (deliveries, _) = self.env_status();
+                obs.progress(&Progress {
+                    round,
+                    tick,
+                    deliveries,
+                    messages,
+                });
+            }
+            if finished {
+                break EndReason::Completed;
+            }
+            if self.slots.iter().all(|s| s.stats.stopped) {
+                break EndReason::AllStopped;
+            }
+            if tick >= self.opts.max_ticks {
+                break EndReason::TickLimit;
+            }
+            if let Some(tps) = self.opts.realtime.filter(|t| *t > 0.0 && t.is_finite()) {
+                let due = start + Duration::from_secs_f64(round as f64 / tps);
+                let now = Instant::now();
+                if due > now {
+                    std::thread::sleep(due - now);
+                }
+            }
+        };
+        let (deliveries, env_stats) = self.env_status();
+        let summary = RunSummary {
+            completed: end == EndReason::Completed,
+            end,
+            ticks: tick,
+            rounds: round,
+            deliveries,
+            messages,
+            seed: self.seed,
+            map: self.map.clone(),
+            agents: self
+                .slots
+                .iter()
+                .map(|s| (s.name.clone(), s.stats.clone()))
+                .collect(),
+            env: env_stats,
+        };
+        let err = match trace {
+            Some(mut t) => {
+                t.end(summary.trace_json());
+                t.finish().err()
+            }
+            None => None,
+        };
+        (summary, err)
+    }
+
+    fn agent_infos(&self) -> Vec<AgentInfo> {
+        self.slots
+            .iter()
+            .map(|s| AgentInfo {
+                name: s.name.clone(),
+                file: self
+                    .system
+                    .files
+                    .get(&s.reference)
+                    .cloned()
+                    .unwrap_or_default(),
+                entity: s.entity.clone(),
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,260 @@
+//! A loaded multi-agent system: the environment's init parameters, one compiled program per
+//! agent file (parsed and validated once, shared by every agent of that file) and the launch
+//! rules. Loads from disk, from files built into the binary, or a single `.goal` file.
+
+use crate::agent::Program;
+use crate::diag::Diagnostic;
+use crate::env::InitParams;
+use crate::syntax::mas2g::ast::{
+    AgentName, InitValue, LaunchInstruction, LaunchRule, MasFile, Spanned,
+};
+use crate::term::{Float, Term};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// A diagnostic together with the text of the file it points into (for rendering).
+#[derive(Clone, Debug)]
+pub struct Problem {
+    pub diagnostic: Diagnostic,
+    pub source: Arc<str>,
+}
+
+impl Problem {
+    /// A problem without source text (e.g. a file that could not be read).
+    pub fn bare(diagnostic: Diagnostic) -> Problem {
+        Problem {
+            diagnostic,
+            source: Arc::from(""),
+        }
+    }
+
+    /// The rustc-like rendering with a source excerpt.
+    pub fn render(&self) -> String {
+        self.diagnostic.render(&self.source)
+    }
+}
+
+/// Where the files of a system come from.
+#[derive(Clone, Debug)]
+pub enum Origin {
+    /// Paths relative to this directory.
+    Disk(PathBuf),
+    /// Files built into the binary: (path, text).
+    Embedded(&'static [(&'static str, &'static str)]),
+}
+
+impl Origin {
+    fn read(&self, path: &str) -> Result<(String, String), Diagnostic> {
+        match self {
+            Origin::Disk(base) => {
+                let full = base.join(path);
+                let text = crate::syntax::check::read_source(&full)?;
+                Ok((full.display().to_string(), text))
+            }
+            Origin::Embedded(files) => files
+                .iter()
+                .find(|(p, _)| *p == path)
+                .map(|(p, t)| (p.to_string(), t.to_string()))
+                .ok_or_else(|| {
+                    Diagnostic::error(
+                        "E0205",
+                        format!("agent file `{path}` not found"),
+                        path,
+                        0..0,
+                    )
+                }),
+        }
+    }
+
+    fn base_dir(&self) -> Option<&Path> {
+        match self {
+            Origin::Disk(b) => Some(b.as_path()),
+            Origin::Embedded(_) => None,
+        }
+    }
+}
+
+/// A multi-agent system ready to launch.
+#[derive(Clone, Debug)]
+pub struct MasSystem {
+    /// The `.mas2g` file (or the single `.goal` file).
+    pub file: String,
+    /// The built-in environment's init parameters; `None` runs without an environment.
+    pub env: Option<InitParams>,
+    /// Compiled programs by reference name.
+    pub programs: BTreeMap<String, Arc<Program>>,
+    /// Agent file path (as loaded) by reference name.
+    pub files: BTreeMap<String, String>,
+    /// Launch rules in file order.
+    pub rules: Vec<LaunchRule>,
+    /// Warnings met while loading.
+    pub warnings: Vec<Problem>,
+}
+
+/// Loads a `.mas2g` file from disk.
+pub fn load_mas(path: &Path) -> Result<MasSystem, Vec<Problem>> {
+    let file = path.display().to_string();
+    let text = crate::syntax::check::read_source(path).map_err(|d| vec![Problem::bare(d)])?;
+    let base = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    from_mas_text(&file, &text, Origin::Disk(base))
+}
+
+/// Builds a system from `.mas2g` text whose agent files come from `origin`.
+pub fn from_mas_text(file: &str, text: &str, origin: Origin) -> Result<MasSystem, Vec<Problem>> {
+    let src: Arc<str> = Arc::from(text);
+    let (mas, mut diags) = crate::syntax::mas2g::parse(text, file);
+    if let Some(base) = origin.base_dir() {
+        diags.extend(crate::syntax::mas2g::check_files(&mas, base));
+    }
+    let wrap = |d: Diagnostic| Problem {
+        diagnostic: d,
+        source: src.clone(),
+    };
+    let (errors, warnings): (Vec<_>, Vec<_>) = diags.into_iter().partition(|d| d.is_error());
+    if !errors.is_empty() {
+        return Err(errors.into_iter().map(wrap).collect());
+    }
+    let mut system = MasSystem {
+        file: file.to_string(),
+        env: None,
+        programs: BTreeMap::new(),
+        files: BTreeMap::new(),
+        rules: mas.launch_rules.clone(),
+        warnings: warnings.into_iter().map(wrap).collect(),
+    };
+    system.env = env_params(&mas, &origin);
+    let mut problems = Vec::new();
+    let mut compiled: BTreeMap<String, (String, Arc<Program>)> = BTreeMap::new();
+    for af in &mas.agent_files {
+        let reference = af.reference_name();
+        if system.programs.contains_key(&reference) {
+            continue;
+        }
+        // The same file under two reference names is compiled once and shared.
+        if let Some((path, prog)) = compiled.get(&af.path.value) {
+            system.files.insert(reference.clone(), String::clone(path));
+            system.programs.insert(reference, Arc::clone(prog));
+            continue;
+        }
+        match compile_file(&origin, &af.path.value) {
+            Ok((path, prog, warns)) => {
+                system.warnings.extend(warns);
+                compiled.insert(af.path.value.clone(), (path.clone(), prog.clone()));
+                system.files.insert(reference.clone(), path);
+                system.programs.insert(reference, prog);
+            }
+            Err(p) => problems.extend(p),
+        }
+    }
+    if problems.is_empty() {
+        Ok(system)
+    } else {
+        Err(problems)
+    }
+}
+
+/// A system of one agent (named after the file) without an environment.
+pub fn load_agent(path: &Path) -> Result<MasSystem, Vec<Problem>> {
+    let base = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("agent");
+    let reference = name.strip_suffix(".goal").unwrap_or(name).to_string();
+    let (file, prog, warnings) = compile_file(&Origin::Disk(base), name)?;
+    let inst = LaunchInstruction {
+        name: Some(AgentName::Given(Spanned::new(reference.clone(), 0..0))),
+        reference: Spanned::new(reference.clone(), 0..0),
+        count: None,
+        span: 0..0,
+    };
+    Ok(MasSystem {
+        file: file.clone(),
+        env: None,
+        programs: BTreeMap::from([(reference.clone(), prog)]),
+        files: BTreeMap::from([(reference, file)]),
+        rules: vec![LaunchRule {
+            condition: None,
+            instructions: vec![inst],
+            span: 0..0,
+        }],
+        warnings,
+    })
+}
+
+type Compiled = (String, Arc<Program>, Vec<Problem>);
+
+/// Reads, parses, validates and compiles one agent file.
+fn compile_file(origin: &Origin, path: &str) -> Result<Compiled, Vec<Problem>> {
+    let (file, text) = origin.read(path).map_err(|d| vec![Problem::bare(d)])?;
+    let src: Arc<str> = Arc::from(text.as_str());
+    let wrap = |d: Diagnostic| Problem {
+        diagnostic: d,
+        source: src.clone(),
+    };
+    let (ast, mut diags) = crate::syntax::goal::parse_goal(&file, &text);
+    if !diags.iter().any(Diagnostic::is_error) {
+        diags.extend(crate::syntax::validate::validate(&ast, origin.base_dir()));
+    }
+    if diags.iter().any(Diagnostic::is_error) {
+        return Err(diags
+            .into_iter()
+            .filter(Diagnostic::is_error)
+            .map(wrap)
+            .collect());
+    }
+    let prog =
+        Program::compile(&ast, &text).map_err(|ds| ds.into_iter().map(wrap).collect::<Vec<_>>())?;
+    let mut warnings: Vec<Problem> = diags.into_iter().map(wrap).collect();
+    warnings.extend(prog.warnings.iter().cloned().map(wrap));
+    Ok((file, prog, warnings))
+}
+
+/// The init parameters of a built-in `bw4t` environment section (the map path made relative to
+/// the `.mas2g` file when it names a file there).
+fn env_params(mas: &MasFile, origin: &Origin) -> Option<InitParams> {
+    let env = mas.environment.as_ref()?;
+    let name = env.env.as_ref()?;
+    if !name
+        .value
+        .eq_ignore_ascii_case(crate::syntax::mas2g::check::BUILTIN_ENV)
+    {
+        return None;
+    }
+    let mut params = InitParams::new();
+    for p in &env.init {
+        // Duplicate keys: the first one counts (§9.2).
+        params
+            .entry(p.key.value.clone())
+            .or_insert_with(|| init_term(&p.value));
+    }
+    if let (Some(map), Some(base)) = (params.get("map").cloned(), origin.base_dir()) {
+        let text = match &map {
+            Term::Atom(s) => Some(s.name().to_string()),
+            Term::Str(s) => Some(s.to_string()),
+            _ => None,
+        };
+        if let Some(t) = text {
+            if crate::bw4t::map::builtin(&t).is_none() && base.join(&t).is_file() {
+                let joined = base.join(&t).display().to_string();
+                params.insert("map".into(), Term::string(&joined));
+            }
+        }
+    }
+    Some(params)
+}
+
+/// An init value as a term; nesting is bounded by the `.mas2g` lexer, and lists are built
+/// without recursion on their length.
+fn init_term(v: &InitValue) -> Term {
+    match v {
+        InitValue::Ident(s) => Term::atom(&s.value),
+        InitValue::Int(i) => Term::Int(i.value),
+        InitValue::Float(f) => Term::Float(Float(f.value)),
+        InitValue::Str(s) => Term::string(&s.value),
+        InitValue::Function { name, args, .. } => {
+            Term::compound(name.value.as_str(), args.iter().map(init_term).collect())
+        }
+        InitValue::List { items, .. } => {
+            Term::list(items.iter().map(init_term).collect::<Vec<_>>())
+        }
+    }
+}
