@@ -19,6 +19,7 @@ pub mod percepts;
 pub mod program;
 pub mod rule;
 pub mod trace;
+pub mod watch;
 
 pub use cycle::{Agent, AgentConfig, CycleOutput, StopReason};
 pub use error::RuntimeError;
@@ -26,3 +27,4 @@ pub use mailbox::Message;
 pub use percepts::{PerceptType, PerceptTypes};
 pub use program::Program;
 pub use trace::{Event, TraceLevel};
+pub use watch::{Observed, Watcher};

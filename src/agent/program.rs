@@ -157,6 +157,27 @@ pub struct Program {
     pub event: Option<usize>,
     /// Warnings found while compiling.
     pub warnings: Vec<Diagnostic>,
+    /// Macros and callable names, kept to compile code from outside the program ([`Program::extend`]).
+    names: Names,
+}
+
+/// The program's macros and callables (modules and action specs by name/arity).
+#[derive(Clone, Debug, Default)]
+struct Names {
+    macros: BTreeMap<(String, usize), MacroDef>,
+    callables: BTreeMap<(String, usize), Callable>,
+}
+
+/// Code from outside a program (a test file) compiled against it by [`Program::extend`].
+#[derive(Debug)]
+pub struct Extension {
+    /// A copy of the program with one extra rule block per action sequence.
+    pub program: Arc<Program>,
+    /// The extra blocks, in the order of the action sequences: one `if true then A` rule per
+    /// action, run in order (`linearall`), so a disabled action is skipped.
+    pub blocks: Vec<usize>,
+    /// The conditions, with the program's macros expanded.
+    pub conditions: Vec<Vec<Lit>>,
 }
 
 impl Program {
@@ -199,6 +220,82 @@ impl Program {
 
 type MacroDef = (Vec<Term>, Vec<ast::Literal>);
 
+impl Program {
+    /// Compiles action sequences and conditions written in `file` (e.g. a `.test2g` file, text
+    /// `source`) against this program: actions may call its modules and action specs,
+    /// conditions may use its macros. Unknown names are errors.
+    pub fn extend(
+        &self,
+        file: &str,
+        source: &str,
+        combos: &[Vec<ast::Action>],
+        conditions: &[Vec<ast::Literal>],
+    ) -> Result<Extension, Vec<Diagnostic>> {
+        let mut c = Compiler {
+            file: file.to_string(),
+            source,
+            errors: Vec::new(),
+            warnings: Vec::new(),
+            macros: self.names.macros.clone(),
+            // Renamed macro variables must not meet the program's own.
+            fresh: 1 << 32,
+            blocks: self.blocks.clone(),
+            modules: self.modules.clone(),
+            specs: self.specs.clone(),
+            callables: self.names.callables.clone(),
+            select_modules: Vec::new(),
+        };
+        let mut blocks = Vec::new();
+        for combo in combos {
+            let mut rules = Vec::new();
+            for a in combo {
+                let line = c.line(&a.span);
+                if let Some(def) = c.action(a) {
+                    rules.push(RuleDef {
+                        kind: RuleKind::If,
+                        cond: vec![Lit::True],
+                        body: Body::Combo(vec![def]),
+                        label: format!("test:{line}").into(),
+                        line,
+                        per_goal: false,
+                    });
+                }
+            }
+            blocks.push(c.blocks.len());
+            c.blocks.push(Block {
+                rules,
+                order: Order::LinearAll,
+            });
+        }
+        let mut conds = Vec::new();
+        for lits in conditions {
+            let mut out = Vec::new();
+            c.literals(lits, &Subst::new(), 0, &mut out);
+            conds.push(out);
+        }
+        if !c.errors.is_empty() {
+            return Err(c.errors);
+        }
+        Ok(Extension {
+            program: Arc::new(Program {
+                file: self.file.clone(),
+                source: self.source.clone(),
+                knowledge: self.knowledge.clone(),
+                modules: c.modules,
+                blocks: c.blocks,
+                specs: c.specs,
+                init: self.init,
+                main: self.main,
+                event: self.event,
+                warnings: Vec::new(),
+                names: self.names.clone(),
+            }),
+            blocks,
+            conditions: conds,
+        })
+    }
+}
+
 struct Compiler<'s> {
     file: String,
     source: &'s str,
@@ -213,7 +310,7 @@ struct Compiler<'s> {
     select_modules: Vec<usize>,
 }
 
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 enum Callable {
     Module(usize),
     Spec(usize),
@@ -373,6 +470,10 @@ impl Compiler<'_> {
             main,
             event,
             warnings: self.warnings,
+            names: Names {
+                macros: self.macros,
+                callables: self.callables,
+            },
         }))
     }
 
