@@ -6,6 +6,7 @@
 //! i-th launch. Blocks named `before` and `after` are not tests; their sections run before and
 //! after each test of that agent.
 
+use super::blocks::BlocksWorld;
 use super::controller::Controller;
 use super::report::{Outcome, TestReport};
 use crate::agent::{Agent, AgentConfig, Event, Message, StopReason, TraceLevel};
@@ -16,6 +17,7 @@ use crate::mas::launch::{Launch, Launcher};
 use crate::mas::routing::Router;
 use crate::mas::run::{agent_seed, env_params, percept_types, Quiet, RunOptions};
 use crate::mas::{system, MasSystem};
+use crate::syntax::mas2g::ast::MasFile;
 use crate::syntax::test2g::ast::{MasTest, NamedTest, TestSection};
 use crate::term::Term;
 use std::path::Path;
@@ -80,7 +82,13 @@ pub fn run_file(path: &Path, opts: &TestOptions) -> Vec<TestReport> {
     if !errors.is_empty() {
         return vec![error_report(&file, "-", "-", render(&errors, &source))];
     }
-    let system = match system::load_mas(&base.join(&test.mas.value)) {
+    let mas_path = base.join(&test.mas.value);
+    // A blocks world is not a `goal run` environment: find it in the MAS file here.
+    let blocks = crate::syntax::check::read_source(&mas_path)
+        .ok()
+        .map(|text| crate::syntax::mas2g::parse(&text, &mas_path.display().to_string()).0)
+        .filter(|m| BlocksWorld::from_mas(m).is_some());
+    let system = match system::load_mas(&mas_path) {
         Ok(s) => s,
         Err(ps) => {
             let text = ps.iter().map(|p| p.render()).collect();
@@ -89,7 +97,14 @@ pub fn run_file(path: &Path, opts: &TestOptions) -> Vec<TestReport> {
     };
     let mut reports = Vec::new();
     for jobs in plan(&test) {
-        reports.extend(launch(&system, &test, &file, &source, &jobs, opts));
+        let ctx = Ctx {
+            system: &system,
+            blocks: blocks.as_ref(),
+            test: &test,
+            file: &file,
+            source: &source,
+        };
+        reports.extend(launch(&ctx, &jobs, opts));
     }
     reports
 }
@@ -136,15 +151,19 @@ struct Slot {
     inbox: Vec<Message>,
 }
 
+/// What every launch of a test file shares.
+struct Ctx<'a> {
+    system: &'a MasSystem,
+    /// The MAS file when it asks for the blocks world.
+    blocks: Option<&'a MasFile>,
+    test: &'a MasTest,
+    file: &'a str,
+    source: &'a str,
+}
+
 /// Launches the MAS once and runs `jobs`; one report per job.
-fn launch(
-    system: &MasSystem,
-    test: &MasTest,
-    file: &str,
-    source: &str,
-    jobs: &[Job<'_>],
-    opts: &TestOptions,
-) -> Vec<TestReport> {
+fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport> {
+    let (system, test, file, source) = (ctx.system, ctx.test, ctx.file, ctx.source);
     let fail_all = |m: String| -> Vec<TestReport> {
         jobs.iter()
             .map(|j| error_report(file, &j.agent, &j.test, m.clone()))
@@ -169,7 +188,17 @@ fn launch(
                 Err(e) => return fail_all(format!("environment: {e}")),
             }
         }
-        None => (None, None, opts.seed.unwrap_or(0)),
+        None => match ctx.blocks.and_then(BlocksWorld::from_mas) {
+            Some(Ok(world)) => {
+                let handle = EnvHandle::spawn(Box::new(world), Mode::LockStep);
+                match handle.info() {
+                    Ok(info) => (Some(handle), Some(info), opts.seed.unwrap_or(0)),
+                    Err(e) => return fail_all(format!("environment: {e}")),
+                }
+            }
+            Some(Err(e)) => return fail_all(format!("blocks world: {e}")),
+            None => (None, None, opts.seed.unwrap_or(0)),
+        },
     };
     if let Some(info) = &info {
         for e in &info.entities {
