@@ -87,6 +87,8 @@ impl Collector<'_> {
     }
     fn text(&self, span: &Span) -> String {
         let t = self.source.get(span.clone()).unwrap_or("");
+        // A reaction's span starts at the comma after the trigger.
+        let t = t.trim_start_matches(|c: char| c == ',' || c.is_whitespace());
         t.split_whitespace().collect::<Vec<_>>().join(" ")
     }
     fn combo(&mut self, c: &[Action]) -> usize {
