@@ -218,6 +218,14 @@ fn cycle_difference(x: &Value, y: &Value) -> (String, String) {
 }
 
 fn describe_event(ev: &Value) -> String {
+    let f = |k: &str| ev[k].as_str().unwrap_or("?").to_string();
+    match ev["event"].as_str() {
+        Some("rule_fired") => return format!("rule {} fired with {}", f("rule"), f("bindings")),
+        Some("rule_evaluated") => {
+            return format!("rule {} evaluated: {} answers", f("rule"), ev["answers"])
+        }
+        _ => {}
+    }
     let name = ev["event"].as_str().unwrap_or("?").replace('_', " ");
     let fields: Vec<String> = ev
         .as_object()
