@@ -11,7 +11,10 @@ fn shipped_tests() -> Vec<PathBuf> {
     let mut found = Vec::new();
     let mut stack = vec![root];
     while let Some(dir) = stack.pop() {
-        for e in std::fs::read_dir(&dir).expect("agents/ is readable").flatten() {
+        for e in std::fs::read_dir(&dir)
+            .expect("agents/ is readable")
+            .flatten()
+        {
             let p = e.path();
             if p.is_dir() {
                 stack.push(p);
@@ -83,7 +86,7 @@ fn json_output_has_one_object_per_test_and_failures_exit_one() {
             "--format",
             "json",
             "--max-ticks",
-            "100",
+            "500",
             "agents/counter/counter.test2g",
             "tests/fixtures/test2g/failing/never.test2g",
         ])

@@ -40,14 +40,29 @@ fn ping_pong_scenario_trace() {
 fn counter_trace_does_not_depend_on_the_worker_count() {
     std::env::set_current_dir(root()).expect("manifest dir");
     let sys = system::load_mas(Path::new("agents/counter/counter.mas2g")).expect("loads");
-    let one = record(&sys, &RunOptions { workers: 1, ..opts() }).expect("runs");
-    let two = record(&sys, &RunOptions { workers: 2, ..opts() }).expect("runs");
+    let one = record(
+        &sys,
+        &RunOptions {
+            workers: 1,
+            ..opts()
+        },
+    )
+    .expect("runs");
+    let two = record(
+        &sys,
+        &RunOptions {
+            workers: 2,
+            ..opts()
+        },
+    )
+    .expect("runs");
     assert_eq!(compare(&one, &two), None);
     let end = one.lines().last().unwrap_or_default();
     insta::assert_snapshot!("counter_trace_end", end);
 }
 
-const COUNTER_MAS: &str = "agentfiles {\n\t\"counter.goal\".\n}\nlaunchpolicy {\n\tlaunch counter.\n}\n";
+const COUNTER_MAS: &str =
+    "agentfiles {\n\t\"counter.goal\".\n}\nlaunchpolicy {\n\tlaunch counter.\n}\n";
 
 #[test]
 fn golden_round_trip_through_the_library() {
@@ -68,7 +83,9 @@ fn golden_round_trip_through_the_library() {
     let changed = agent.replace("M is N + 1", "M is N + 1 + N // 40");
     assert_ne!(changed, agent, "the agent text has the increment");
     std::fs::write(dir.join("counter.goal"), changed).expect("write");
-    let diff = check(&golden, &o).expect("runs").expect("a changed agent differs");
+    let diff = check(&golden, &o)
+        .expect("runs")
+        .expect("a changed agent differs");
     assert_eq!(diff.agent.as_deref(), Some("counter"));
     assert!(diff.round.is_some());
     insta::assert_snapshot!("golden_difference", diff.to_text());

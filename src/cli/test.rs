@@ -81,7 +81,10 @@ fn golden_main(trace: &Path, args: &Args) -> ExitCode {
     match result {
         Ok(None) => {
             if json {
-                println!("{}", serde_json::json!({"golden": trace, "status": "passed"}));
+                println!(
+                    "{}",
+                    serde_json::json!({"golden": trace, "status": "passed"})
+                );
             } else {
                 println!("golden {} ... passed", trace.display());
             }

@@ -39,7 +39,9 @@ impl BlocksWorld {
             };
             for it in items {
                 match it {
-                    InitValue::Function { name: f, args, .. } if f.value == "on" && args.len() == 2 => {
+                    InitValue::Function { name: f, args, .. }
+                        if f.value == "on" && args.len() == 2 =>
+                    {
                         match (name(&args[0]), name(&args[1])) {
                             (Some(x), Some(y)) => {
                                 on.insert(x, y);

@@ -78,7 +78,12 @@ struct RawCond {
 enum RawStep {
     Do(usize, usize),
     Assert(RawCond, Option<String>, usize),
-    Evaluate(usize, Vec<(Vec<(TemporalOp, RawCond)>, String)>, Option<(bool, RawCond)>, usize),
+    Evaluate(
+        usize,
+        Vec<(Vec<(TemporalOp, RawCond)>, String)>,
+        Option<(bool, RawCond)>,
+        usize,
+    ),
 }
 
 impl Collector<'_> {
@@ -312,7 +317,15 @@ impl Controller {
         lock(&self.shared).cycle = agent.cycles() + 1;
     }
 
-    fn fail(&mut self, agent: &mut Agent, kind: &str, line: usize, condition: String, reason: String, bindings: Option<String>) {
+    fn fail(
+        &mut self,
+        agent: &mut Agent,
+        kind: &str,
+        line: usize,
+        condition: String,
+        reason: String,
+        bindings: Option<String>,
+    ) {
         agent.abort_task();
         lock(&self.shared).eval = None;
         self.outcome = Some(Outcome::Failed(Failure {
@@ -353,7 +366,9 @@ impl Controller {
             return;
         }
         let line = match self.steps.get(self.pos) {
-            Some(Step::Do { line, .. } | Step::Assert { line, .. } | Step::Evaluate { line, .. }) => *line,
+            Some(
+                Step::Do { line, .. } | Step::Assert { line, .. } | Step::Evaluate { line, .. },
+            ) => *line,
             None => 0,
         };
         if let Some(StopReason::Error(e)) = agent.stopped() {
@@ -452,7 +467,11 @@ impl Controller {
                     agent.start_task(*block);
                     return;
                 }
-                Step::Assert { cond, message, line } => {
+                Step::Assert {
+                    cond,
+                    message,
+                    line,
+                } => {
                     let last = lock(&self.shared).last.clone();
                     match cond.answers(agent.mental_state(), &Subst::new(), last.as_ref()) {
                         Ok(a) if !a.is_empty() => {}

@@ -144,7 +144,14 @@ fn header_key(v: &Value) -> Value {
                 .collect()
         })
         .unwrap_or_default();
-    serde_json::json!([v["format"], v["version"], v["env"], v["seed"], v["map"], agents])
+    serde_json::json!([
+        v["format"],
+        v["version"],
+        v["env"],
+        v["seed"],
+        v["map"],
+        agents
+    ])
 }
 
 /// Compares two traces record by record; the first difference, if any.
@@ -257,12 +264,7 @@ fn describe_record(v: &Value) -> String {
             let n = v["events"].as_array().map_or(0, Vec::len);
             format!("a cycle of {} with {n} events{at}", s("agent"))
         }
-        Some("action") => format!(
-            "{} does {} ({}){at}",
-            s("agent"),
-            s("action"),
-            s("result")
-        ),
+        Some("action") => format!("{} does {} ({}){at}", s("agent"), s("action"), s("result")),
         Some("message") => format!("{} sends {} to {}{at}", s("from"), s("content"), s("to")),
         Some("warning") => format!("warning for {}: {}{at}", s("agent"), s("message")),
         Some("end") => format!(

@@ -245,8 +245,10 @@ impl Evaluation {
                 TemporalOp::Watch if self.watch.len() < MAX_WATCH => {
                     for a in &answers {
                         let b = bindings(a).unwrap_or_else(|| "true".into());
-                        self.watch
-                            .push(format!("cycle {cycle}, {what}: {} with {b}", part.cond.text));
+                        self.watch.push(format!(
+                            "cycle {cycle}, {what}: {} with {b}",
+                            part.cond.text
+                        ));
                     }
                 }
                 _ => {}

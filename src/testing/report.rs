@@ -121,7 +121,11 @@ pub fn summary(reports: &[TestReport]) -> String {
     let failed = count(|o| matches!(o, Outcome::Failed(_)));
     let timed = count(|o| matches!(o, Outcome::TimedOut { .. }));
     let errors = count(|o| matches!(o, Outcome::Error { .. }));
-    let verdict = if passed == reports.len() { "ok" } else { "FAILED" };
+    let verdict = if passed == reports.len() {
+        "ok"
+    } else {
+        "FAILED"
+    };
     format!(
         "test result: {verdict}. {passed} passed; {failed} failed; {timed} timed out; {errors} errors\n"
     )

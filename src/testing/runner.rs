@@ -214,7 +214,10 @@ fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport
     let mut slots = Vec::new();
     for l in &launches {
         let Some(prog) = system.programs.get(&l.reference) else {
-            return fail_all(format!("launch of {}: no agent file `{}`", l.name, l.reference));
+            return fail_all(format!(
+                "launch of {}: no agent file `{}`",
+                l.name, l.reference
+            ));
         };
         let config = AgentConfig {
             seed: agent_seed(seed, &l.name),
@@ -282,13 +285,18 @@ fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport
     let mut rounds: u64 = 0;
     let mut env_done = false;
     let open = |slots: &[Slot]| {
-        slots
-            .iter()
-            .any(|s| s.control.as_ref().is_some_and(|(_, c)| c.outcome().is_none()))
+        slots.iter().any(|s| {
+            s.control
+                .as_ref()
+                .is_some_and(|(_, c)| c.outcome().is_none())
+        })
     };
     while open(&slots) {
         let bound = if timeout.is_some_and(|t| start.elapsed() >= t) {
-            Some(format!("the timeout of {}s ran out", timeout.map_or(0, |t| t.as_secs())))
+            Some(format!(
+                "the timeout of {}s ran out",
+                timeout.map_or(0, |t| t.as_secs())
+            ))
         } else if rounds >= opts.max_ticks {
             Some(format!("the limit of {} ticks was reached", opts.max_ticks))
         } else {
