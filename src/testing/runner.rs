@@ -319,7 +319,7 @@ fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport
                 continue;
             }
             let busy = s.control.as_ref().is_some_and(|(_, c)| c.busy(&s.agent));
-            if !(busy || s.acted || !s.percepts.is_empty() || !s.inbox.is_empty()) {
+            if !busy && !s.acted && s.percepts.is_empty() && s.inbox.is_empty() {
                 continue;
             }
             if let Some((_, c)) = &s.control {
