@@ -116,3 +116,26 @@ fn json_reports_name_section_condition_bindings_and_cycle() {
     let r = run("failing/chain.test2g").remove(0);
     insta::assert_json_snapshot!("chain_json", r.to_json());
 }
+
+#[test]
+fn the_wall_time_timeout_times_a_test_out() {
+    std::env::set_current_dir(env!("CARGO_MANIFEST_DIR")).expect("manifest dir");
+    let opts = TestOptions {
+        max_ticks: u64::MAX,
+        ..TestOptions::default()
+    };
+    let r = run_file(
+        Path::new("tests/fixtures/test2g/failing/timeout.test2g"),
+        &opts,
+    )
+    .remove(0);
+    match r.outcome {
+        Outcome::TimedOut {
+            reason, section, ..
+        } => {
+            assert_eq!(reason, "the timeout of 1s ran out");
+            assert_eq!(section, 1);
+        }
+        other => panic!("expected a timeout, got {other:?}"),
+    }
+}
