@@ -273,3 +273,22 @@ fn summary_table_of_a_failing_system() {
     let table = goal::mas::summary::table(&s).replace(root, "<root>");
     insta::assert_snapshot!(table);
 }
+
+#[test]
+fn copies_get_numbered_names_and_every_agent_knows_all_agents() {
+    let (s, _, obs) = run_file("whoami.mas2g", &opts(2, 100));
+    let names: Vec<&String> = s.agents.keys().collect();
+    assert_eq!(names, ["who1", "who2", "who3", "whoami"]);
+    let mut got: Vec<String> = obs.printed.iter().map(|(_, l)| l.clone()).collect();
+    got.sort();
+    let all = "[who1,who2,who3,whoami]";
+    assert_eq!(
+        got,
+        [
+            format!("who1-{all}"),
+            format!("who2-{all}"),
+            format!("who3-{all}"),
+            format!("whoami-{all}"),
+        ]
+    );
+}
