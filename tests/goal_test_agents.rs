@@ -56,8 +56,8 @@ fn every_shipped_test_file_passes() {
         }
     }
     assert!(failures.is_empty(), "failing tests:\n{}", failures.join(""));
-    // stacker 1, robot 1, team 2 (Bot1, Bot2), counter 1, ping-pong 1.
-    assert_eq!(count, 6);
+    // stacker 1, robot 1, team 3 (Bot1, Bot2, Bot3), counter 1, ping-pong 1.
+    assert_eq!(count, 7);
 }
 
 #[test]
