@@ -11,3 +11,4 @@ pub mod kr;
 pub mod mas;
 pub mod syntax;
 pub mod term;
+pub mod testing;

@@ -19,6 +19,8 @@ enum Command {
     Check(cli::check::Args),
     /// Run a multi-agent system (.mas2g) or a single agent (.goal); without a file, the default BW4T team.
     Run(cli::run::Args),
+    /// Run the named tests of .test2g files, or check a run against a golden trace (--golden).
+    Test(cli::test::Args),
     /// Load Prolog files and print the answers of a query (or read queries from standard input).
     Prolog(cli::prolog::Args),
 }
@@ -29,5 +31,6 @@ fn main() -> ExitCode {
         Command::Check(args) => cli::check::main(args),
         Command::Run(args) => cli::run::main(args),
         Command::Prolog(args) => cli::prolog::main(args),
+        Command::Test(args) => cli::test::main(args),
     }
 }

@@ -7,6 +7,7 @@ use super::error::Fault;
 use super::goals::Goal;
 use super::program::{Act, Program, SpecDef};
 use super::trace::{Event, TraceLevel};
+use super::watch::Observed;
 use crate::term::{print::Style, Subst, Term};
 use rand::Rng;
 
@@ -82,15 +83,20 @@ impl Core {
 
     /// Records an `ActionPerformed` event built only when the trace records changes.
     pub fn done_with(&mut self, action: impl FnOnce() -> Term) {
-        if self.level >= TraceLevel::Changes {
-            self.event(Event::ActionPerformed {
-                action: action().to_string(),
-            });
+        if self.level >= TraceLevel::Changes || self.watcher.is_some() {
+            let t = action();
+            self.watch(Observed::Action(&t));
+            if self.level >= TraceLevel::Changes {
+                self.event(Event::ActionPerformed {
+                    action: t.to_string(),
+                });
+            }
         }
     }
 
     /// Records an `ActionPerformed` event.
     pub fn done(&mut self, action: &Term) -> Result<(), Fault> {
+        self.watch(Observed::Action(action));
         self.changes(vec![Event::ActionPerformed {
             action: action.to_string(),
         }]);

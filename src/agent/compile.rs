@@ -48,7 +48,15 @@ pub(crate) struct Compiler<'s> {
     select_modules: Vec<usize>,
 }
 
-#[derive(Clone, Copy)]
+/// The program's macros and callables (modules and action specs by name/arity), kept in the
+/// program to compile code from outside it ([`extend`]).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Names {
+    macros: BTreeMap<(String, usize), MacroDef>,
+    callables: BTreeMap<(String, usize), Callable>,
+}
+
+#[derive(Clone, Copy, Debug)]
 enum Callable {
     Module(usize),
     Spec(usize),
@@ -212,6 +220,10 @@ impl Compiler<'_> {
             main,
             event,
             warnings: self.warnings,
+            names: Names {
+                macros: self.macros,
+                callables: self.callables,
+            },
             uses_newpercept: mentions_newpercept(&ast.modules),
         }))
     }
@@ -589,4 +601,78 @@ fn mentions_newpercept(modules: &[ast::Module]) -> bool {
         }
     }
     false
+}
+
+/// Compiles action sequences (one extra block each) and conditions from outside `prog` (see
+/// [`Program::extend`]).
+pub(crate) fn extend(
+    prog: &Program,
+    file: &str,
+    source: &str,
+    combos: &[Vec<ast::Action>],
+    conditions: &[Vec<ast::Literal>],
+) -> Result<Extension, Vec<Diagnostic>> {
+    let mut c = Compiler {
+        file: file.to_string(),
+        source,
+        errors: Vec::new(),
+        warnings: Vec::new(),
+        macros: prog.names.macros.clone(),
+        // Renamed macro variables must not meet the program's own.
+        fresh: 1 << 32,
+        blocks: prog.blocks.clone(),
+        modules: prog.modules.clone(),
+        specs: prog.specs.clone(),
+        callables: prog.names.callables.clone(),
+        select_modules: Vec::new(),
+    };
+    let mut blocks = Vec::new();
+    for combo in combos {
+        let mut rules = Vec::new();
+        for a in combo {
+            let line = c.line(&a.span);
+            if let Some(def) = c.action(a) {
+                rules.push(RuleDef {
+                    kind: RuleKind::If,
+                    cond: vec![Lit::True],
+                    body: Body::Combo(vec![def]),
+                    label: format!("test:{line}").into(),
+                    line,
+                    per_goal: false,
+                });
+            }
+        }
+        blocks.push(c.blocks.len());
+        c.blocks.push(Block {
+            rules,
+            order: Order::LinearAll,
+        });
+    }
+    let mut conds = Vec::new();
+    for lits in conditions {
+        let mut out = Vec::new();
+        c.literals(lits, &Subst::new(), 0, &mut out);
+        conds.push(out);
+    }
+    if !c.errors.is_empty() {
+        return Err(c.errors);
+    }
+    Ok(Extension {
+        program: Arc::new(Program {
+            file: prog.file.clone(),
+            source: prog.source.clone(),
+            knowledge: prog.knowledge.clone(),
+            modules: c.modules,
+            blocks: c.blocks,
+            specs: c.specs,
+            init: prog.init,
+            main: prog.main,
+            event: prog.event,
+            warnings: Vec::new(),
+            uses_newpercept: prog.uses_newpercept,
+            names: prog.names.clone(),
+        }),
+        blocks,
+        conditions: conds,
+    })
 }

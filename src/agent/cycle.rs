@@ -6,10 +6,11 @@ use super::error::RuntimeError;
 use super::kr_bridge::Limits;
 use super::mailbox::Message;
 use super::mental_state::MentalState;
-use super::module::{Frame, RunEnd};
+use super::module::{Frame, ModFrame, RunEnd};
 use super::percepts::PerceptTypes;
 use super::program::Program;
 use super::trace::{Event, TraceLevel};
+use super::watch::{Observed, Watcher};
 use crate::term::Term;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -81,6 +82,8 @@ pub struct Core {
     pub max_steps: u64,
     /// Output of Prolog write/format built-ins.
     pub kr_out: String,
+    /// A test controller's observer of module entry/exit and actions.
+    pub watcher: Option<Box<dyn Watcher>>,
 }
 
 impl Core {
@@ -102,6 +105,13 @@ impl Core {
             self.event(e);
         }
     }
+
+    /// Shows an observable event to the watcher, if one is installed.
+    pub fn watch(&mut self, at: Observed<'_>) {
+        if let Some(w) = self.watcher.as_mut() {
+            w.observe(&self.ms, at);
+        }
+    }
 }
 
 /// A GOAL agent: its program (shared), mental state, random generator and execution state.
@@ -114,6 +124,8 @@ pub struct Agent {
     main_entered: bool,
     acted_last: bool,
     stopped: Option<StopReason>,
+    /// Run by a test controller: `main` holds the current task instead of the main module.
+    controlled: bool,
 }
 
 impl Agent {
@@ -150,6 +162,7 @@ impl Agent {
                 level: config.trace,
                 max_steps: config.max_steps,
                 kr_out: String::new(),
+                watcher: None,
             },
             types: config.percept_types,
             cycle: 0,
@@ -157,6 +170,7 @@ impl Agent {
             main_entered: false,
             acted_last: false,
             stopped: None,
+            controlled: false,
         }
     }
 
@@ -178,6 +192,54 @@ impl Agent {
     /// Why the agent stopped, if it did.
     pub fn stopped(&self) -> Option<&StopReason> {
         self.stopped.as_ref()
+    }
+
+    /// Hands the agent to a test controller: the main module is no longer entered by itself;
+    /// cycles run the task given with [`Agent::start_task`] (init and event run as usual).
+    pub fn control(&mut self) {
+        self.controlled = true;
+    }
+
+    /// Starts running rule block `block` of the program (a test's `do` section compiled with
+    /// `Program::extend`) from the next cycle on, with the usual cycle boundaries; any
+    /// unfinished task is abandoned first.
+    pub fn start_task(&mut self, block: usize) {
+        self.abort_task();
+        let n = self.program.blocks.get(block).map_or(0, |b| b.rules.len());
+        self.main.push(Frame::Module(ModFrame {
+            module: None,
+            block,
+            subst: crate::term::Subst::new(),
+            order: (0..n as u32).collect(),
+            next: 0,
+            pass_acted: false,
+            acted: false,
+            pushed_focus: false,
+            exiting: false,
+        }));
+        self.acted_last = true;
+    }
+
+    /// True while a task started with [`Agent::start_task`] is unfinished.
+    pub fn task_running(&self) -> bool {
+        self.controlled && !self.main.is_empty()
+    }
+
+    /// Stops the current task (a test boundary was reached): called modules are left (focus
+    /// restored, exit events observed) without running more rules.
+    pub fn abort_task(&mut self) {
+        let prog = self.program.clone();
+        if let Err(e) = self.core.unwind(&prog, &mut self.main) {
+            self.core.event(Event::Error {
+                message: e.message.clone(),
+            });
+        }
+        self.main.clear();
+    }
+
+    /// Installs (or removes, with `None`) the watcher; returns the previous one.
+    pub fn set_watcher(&mut self, w: Option<Box<dyn Watcher>>) -> Option<Box<dyn Watcher>> {
+        std::mem::replace(&mut self.core.watcher, w)
     }
 
     /// Runs one reasoning cycle with this cycle's percepts and incoming messages.
@@ -261,6 +323,23 @@ impl Agent {
             }
         }
         let core = &mut self.core;
+        if self.controlled {
+            if self.main.is_empty() {
+                self.acted_last = false;
+                return Ok(None);
+            }
+            return match core.run(&prog, &mut self.main, true)? {
+                RunEnd::Suspended { acted } => {
+                    self.acted_last = acted;
+                    Ok(None)
+                }
+                RunEnd::Finished => {
+                    self.main.clear();
+                    self.acted_last = true;
+                    Ok(None)
+                }
+            };
+        }
         if !self.main_entered {
             self.main_entered = true;
             let f = core

@@ -37,6 +37,7 @@ pub mod percepts;
 pub mod program;
 pub mod rule;
 pub mod trace;
+pub mod watch;
 
 pub use cycle::{Agent, AgentConfig, CycleOutput, StopReason};
 pub use error::RuntimeError;
@@ -44,3 +45,4 @@ pub use mailbox::Message;
 pub use percepts::{PerceptType, PerceptTypes};
 pub use program::Program;
 pub use trace::{Event, TraceLevel};
+pub use watch::{Observed, Watcher};

@@ -10,6 +10,7 @@ use super::goals::{Goal, GoalBase};
 use super::program::{Act, Body, ModuleDef, Program};
 use super::rule::Answer;
 use super::trace::Event;
+use super::watch::Observed;
 use crate::syntax::ast::{ExitCondition, Focus, Order};
 use crate::term::{Subst, Term};
 use rand::seq::SliceRandom;
@@ -133,6 +134,7 @@ impl Core {
         self.event(Event::ModuleEntered {
             module: m.name.clone(),
         });
+        self.watch(Observed::ModuleEntered(&m.name));
         let mut ev = Vec::new();
         for b in &m.beliefs {
             self.ms.update(b, true, &mut ev)?;
@@ -357,6 +359,17 @@ impl Core {
         }
     }
 
+    /// Leaves every frame of `stack` from the top (a task stopped from outside): named modules
+    /// restore their focus and report their exit.
+    pub fn unwind(&mut self, prog: &Program, stack: &mut Vec<Frame>) -> Result<(), Fault> {
+        while let Some(f) = stack.pop() {
+            if let Frame::Module(m) = f {
+                self.leave(prog, &m)?;
+            }
+        }
+        Ok(())
+    }
+
     /// Leaves a named module: defocus and goal check.
     fn leave(&mut self, prog: &Program, f: &ModFrame) -> Result<(), Fault> {
         if let Some(m) = f.module {
@@ -367,6 +380,7 @@ impl Core {
             self.event(Event::ModuleExited {
                 module: prog.modules[m].name.clone(),
             });
+            self.watch(Observed::ModuleExited(&prog.modules[m].name));
         }
         Ok(())
     }

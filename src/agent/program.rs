@@ -158,6 +158,21 @@ pub struct Program {
     pub warnings: Vec<Diagnostic>,
     /// Some query mentions `newpercept` (so the raw batch must be kept as facts).
     pub uses_newpercept: bool,
+    /// Macros and callable names, kept to compile code from outside the program
+    /// ([`Program::extend`]).
+    pub(crate) names: super::compile::Names,
+}
+
+/// Code from outside a program (a test file) compiled against it by [`Program::extend`].
+#[derive(Debug)]
+pub struct Extension {
+    /// A copy of the program with one extra rule block per action sequence.
+    pub program: Arc<Program>,
+    /// The extra blocks, in the order of the action sequences: one `if true then A` rule per
+    /// action, run in order (`linearall`), so a disabled action is skipped.
+    pub blocks: Vec<usize>,
+    /// The conditions, with the program's macros expanded.
+    pub conditions: Vec<Vec<Lit>>,
 }
 
 impl Program {
@@ -192,5 +207,18 @@ impl Program {
         extra_knowledge: &[Term],
     ) -> Result<Arc<Program>, Vec<Diagnostic>> {
         super::compile::compile(ast, source, extra_knowledge)
+    }
+
+    /// Compiles action sequences and conditions written in `file` (e.g. a `.test2g` file, text
+    /// `source`) against this program: actions may call its modules and action specs,
+    /// conditions may use its macros. Unknown names are errors.
+    pub fn extend(
+        &self,
+        file: &str,
+        source: &str,
+        combos: &[Vec<ast::Action>],
+        conditions: &[Vec<ast::Literal>],
+    ) -> Result<Extension, Vec<Diagnostic>> {
+        super::compile::extend(self, file, source, combos, conditions)
     }
 }

@@ -3,3 +3,4 @@
 pub mod check;
 pub mod prolog;
 pub mod run;
+pub mod test;

@@ -144,7 +144,8 @@ pub fn agent_seed(seed: u64, name: &str) -> u64 {
     z ^ (z >> 31)
 }
 
-fn percept_types(info: &EnvInfo) -> PerceptTypes {
+/// The percept types the environment declares, in the agents' form.
+pub fn percept_types(info: &EnvInfo) -> PerceptTypes {
     use crate::env::PerceptType as E;
     PerceptTypes::new(info.declarations.iter().map(|d| {
         let k = match d.kind {
@@ -163,7 +164,7 @@ fn text_of(t: &Term) -> String {
 
 /// The environment's parameters with the run options applied; unknown keys are dropped with
 /// a warning (the BW4T of the Java distribution ignores them too).
-fn env_params(
+pub fn env_params(
     params: &InitParams,
     opts: &RunOptions,
     obs: &mut dyn Observer,
