@@ -115,7 +115,9 @@ fn spec(ctx: &mut Ctx<'_>, s: &crate::syntax::ast::ActionSpec) {
         }
     }
     let post_vars = var_set(&s.post.term.term);
-    for p in &s.params {
+    // The parameters of an environment action are used: they go to the environment.
+    let internal = matches!(s.kind, crate::syntax::ast::ActionSpecKind::Int);
+    for p in s.params.iter().filter(|_| internal) {
         if let crate::term::Term::Var(v) = &p.term {
             if !is_anonymous(*v) && !pre_vars.contains(v) && !post_vars.contains(v) {
                 ctx.warning(
@@ -125,7 +127,7 @@ fn spec(ctx: &mut Ctx<'_>, s: &crate::syntax::ast::ActionSpec) {
                         v.name()
                     ),
                     p.spans.span.clone(),
-                    "it is only passed to the environment; ignore this if that is intended",
+                    "an internal action only changes beliefs: use the parameter in pre or post, or drop it",
                 );
             }
         }
