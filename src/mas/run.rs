@@ -406,6 +406,11 @@ impl<'a> Setup<'a> {
                 } else if let Some(t) = trace.as_mut() {
                     t.cycle(round, tick, &s.name, &out.events);
                 }
+                for e in &out.events {
+                    if let Event::Warning { message } = e {
+                        obs.warning(&format!("{}: {message}", s.name));
+                    }
+                }
                 for line in &out.printed {
                     obs.printed(&s.name, line);
                 }
