@@ -482,3 +482,259 @@ fn combos_stop_at_the_first_action_that_did_not_run() {
         "exit-module after the failed action never runs"
     );
 }
+
+#[test]
+fn typed_percepts_follow_their_declared_types() {
+    use goal::agent::{Agent, AgentConfig, PerceptType as P, PerceptTypes};
+    let types = PerceptTypes::new([
+        (("place".to_string(), 1), P::Once),
+        (("at".to_string(), 1), P::OnChange),
+        (("door".to_string(), 1), P::OnChangeNeg),
+        (("see".to_string(), 1), P::Always),
+    ]);
+    let cfg = AgentConfig {
+        percept_types: std::sync::Arc::new(types),
+        ..AgentConfig::default()
+    };
+    let mut a = Agent::new(
+        program("main module { program { if bel(nothing) then print(x). } }"),
+        "a",
+        cfg,
+    );
+    let seen = |a: &Agent| {
+        let mut v: Vec<String> = a
+            .mental_state()
+            .percepts
+            .facts()
+            .iter()
+            .map(|t| t.args()[0].to_string())
+            .collect();
+        v.sort();
+        v
+    };
+    step(
+        &mut a,
+        &[
+            "place(r1)",
+            "at(r1)",
+            "door(d1)",
+            "door(d2)",
+            "see(b1)",
+            "unknown(1)",
+        ],
+        &[],
+    );
+    assert_eq!(
+        seen(&a),
+        [
+            "at(r1)",
+            "door(d1)",
+            "door(d2)",
+            "place(r1)",
+            "see(b1)",
+            "unknown(1)"
+        ]
+    );
+    // Once stays, on-change stays until it changes, always/unknown vanish when not sent.
+    step(&mut a, &["not(door(d1))"], &[]);
+    assert_eq!(seen(&a), ["at(r1)", "door(d2)", "place(r1)"]);
+    step(&mut a, &["at(r2)", "door(d3)"], &[]);
+    assert_eq!(seen(&a), ["at(r2)", "door(d2)", "door(d3)", "place(r1)"]);
+    step(&mut a, &["not(place(r1))"], &[]);
+    assert_eq!(seen(&a), ["at(r2)", "door(d2)", "door(d3)"]);
+}
+
+#[test]
+fn bel_percept_reads_the_percept_base() {
+    let mut a = agent("main module { program { forall bel(percept(see(X))) do print(X). } }");
+    assert_eq!(
+        step(&mut a, &["see(b1)", "see(b2)"], &[]).printed,
+        ["b1", "b2"]
+    );
+}
+
+#[test]
+fn a_goal_with_a_non_ground_instance_is_a_runtime_error() {
+    let mut a = agent(
+        "init module { knowledge { want(_) :- true. } goals { g. } }
+         main module { program { if a-goal(want(X)) then print(X). } }",
+    );
+    match a.step(&[], &[]).stopped {
+        Some(StopReason::Error(e)) => assert!(e.message.contains("not ground"), "{e}"),
+        other => panic!("expected an error, got {other:?}"),
+    }
+}
+
+#[test]
+fn agent_and_me_facts_are_believed() {
+    let mut a = agent_with(
+        "main module { program { if bel(me(M)) then print(M) + exit-module. } }
+         event module { program { forall bel(agent(X)) do print(X). } }",
+        "a",
+        &["b"],
+        1,
+    );
+    assert_eq!(step(&mut a, &["tick"], &[]).printed, ["b", "a", "a"]);
+}
+
+#[test]
+fn log_is_not_a_real_action() {
+    let mut a = agent(
+        "main module { program {
+            if true then log(hello).
+            if true then print(after) + exit-module. } }",
+    );
+    let out = a.step(&[], &[]);
+    assert_eq!(out.printed, ["after"], "log does not end a linear pass");
+    assert!(out
+        .events
+        .iter()
+        .any(|e| matches!(e, goal::agent::Event::Log { text } if text == "hello")));
+}
+
+#[test]
+fn ten_thousand_agents_share_one_program() {
+    let p = program(
+        "init module { beliefs { n(0). } }
+         main module { program { if bel(n(X), Y is X + 1) then delete(n(X)) + insert(n(Y)). } }",
+    );
+    let mut agents: Vec<goal::agent::Agent> = (0..10_000)
+        .map(|i| {
+            goal::agent::Agent::new(
+                p.clone(),
+                &format!("bot{i}"),
+                goal::agent::AgentConfig {
+                    seed: i,
+                    trace: goal::agent::TraceLevel::Off,
+                    ..Default::default()
+                },
+            )
+        })
+        .collect();
+    for a in agents.iter_mut() {
+        a.step(&[], &[]);
+    }
+    assert_eq!(
+        std::sync::Arc::strong_count(&p),
+        10_001,
+        "no per-agent copy of the program"
+    );
+    assert!(agents.iter().all(|a| beliefs(a) == ["n(1)"]));
+}
+
+#[test]
+fn newpercept_holds_only_the_current_batch() {
+    use goal::agent::{Agent, AgentConfig, PerceptType, PerceptTypes};
+    let cfg = AgentConfig {
+        percept_types: std::sync::Arc::new(PerceptTypes::new([(
+            ("at".to_string(), 1),
+            PerceptType::OnChange,
+        )])),
+        ..AgentConfig::default()
+    };
+    let mut a = Agent::new(
+        program(
+            "main module { program {
+                if bel(newpercept(at(R))) then print(arrived(R)).
+                if bel(percept(at(R))) then print(still(R)). } }",
+        ),
+        "a",
+        cfg,
+    );
+    assert_eq!(step(&mut a, &["at(r1)"], &[]).printed, ["arrived(r1)"]);
+    assert_eq!(step(&mut a, &[], &[]).printed, ["still(r1)"]);
+}
+
+#[test]
+fn log_bb_writes_the_belief_base() {
+    let mut a = agent(
+        "init module { beliefs { p(1). q. } }
+         main module { program { if true then log(bb) + exit-module. } }",
+    );
+    let out = a.step(&[], &[]);
+    assert!(out
+        .events
+        .iter()
+        .any(|e| matches!(e, goal::agent::Event::Log { text } if text == "p(1)\nq")));
+}
+
+#[test]
+fn nested_blocks_inherit_bindings_and_run_linearall() {
+    let mut a = agent(
+        "init module { beliefs { p(1). p(2). q(2). r(2). } }
+         event module { program {
+            forall bel(p(X)) do {
+                if bel(q(X)) then print(q(X)).
+                if bel(r(X)) then print(r(X)).
+            } } }
+         main module { program { if true then exit-module. } }",
+    );
+    assert_eq!(step(&mut a, &["tick"], &[]).printed, ["q(2)", "r(2)"]);
+}
+
+#[test]
+fn randomall_applies_every_rule_in_a_seeded_random_order() {
+    let src = "event module { program [order=randomall] {
+            if true then print(a). if true then print(b). if true then print(c). if true then print(d). } }
+         main module { program { if true then exit-module. } }";
+    let order = |seed| step(&mut agent_with(src, "x", &[], seed), &["tick"], &[]).printed;
+    let mut first = order(1);
+    assert_eq!(order(1), first, "same seed, same order");
+    first.sort();
+    assert_eq!(first, ["a", "b", "c", "d"], "every rule applies once");
+    let orders: std::collections::BTreeSet<Vec<String>> = (0..10).map(order).collect();
+    assert!(orders.len() > 1, "the order depends on the seed");
+}
+
+#[test]
+fn random_order_applies_one_acting_rule() {
+    let src = "main module { program [order=random] {
+            if true then print(a). if true then print(b). if true then print(c). } }";
+    let mut seen = std::collections::BTreeSet::new();
+    for seed in 0..10 {
+        let out = agent_with(src, "x", &[], seed).step(&[], &[]);
+        assert_eq!(out.printed.len(), 1);
+        seen.insert(out.printed[0].clone());
+    }
+    assert!(seen.len() > 1);
+}
+
+#[test]
+fn adaptive_runs_as_random_with_a_warning() {
+    let p = program("main module { program [order=adaptive] { if true then print(a). } }");
+    assert!(p.warnings.iter().any(|w| w.message.contains("adaptive")));
+    let mut a = goal::agent::Agent::new(p, "a", Default::default());
+    assert_eq!(a.step(&[], &[]).printed, ["a"]);
+}
+
+#[test]
+fn self_adopt_goes_to_the_top_level_goal_base() {
+    let mut a = agent(
+        "main module { program { if true then sub + exit-module. } }
+         module sub [focus=new] { program {
+            if true then self.adopt(later) + adopt(here). } }",
+    );
+    run(&mut a, 3);
+    assert_eq!(goals(&a), ["later"], "the focused goal base was popped");
+}
+
+#[test]
+fn an_unbound_variable_in_a_send_selector_is_a_runtime_error() {
+    let mut a = agent("main module { program { if bel(me(M)) then (Who).send(hi). } }");
+    match a.step(&[], &[]).stopped {
+        Some(StopReason::Error(e)) => {
+            assert!(e.message.contains("selector not bound"), "{e}")
+        }
+        other => panic!("expected an error, got {other:?}"),
+    }
+}
+
+#[test]
+fn exit_module_in_a_called_module_ends_only_that_module() {
+    let mut a = agent(
+        "main module { program { if true then sub + print(back). } }
+         module sub [exit=never] { program { if true then exit-module. } }",
+    );
+    assert_eq!(a.step(&[], &[]).printed, ["back"]);
+    assert!(a.stopped().is_none());
+}

@@ -169,3 +169,60 @@ fn mutated_fixtures_never_panic_and_spans_stay_in_the_file() {
         common::assert_spans_inside("m.mas2g", &src, &diags);
     }
 }
+
+#[test]
+fn goal_check_of_a_mas_file_also_checks_its_agent_files() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/mas2g/every_construct.mas2g");
+    let reports = goal::syntax::check::check_path_with_agents(&path);
+    let files: Vec<String> = reports
+        .iter()
+        .map(|r| {
+            Path::new(&r.file)
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default()
+        })
+        .collect();
+    assert_eq!(
+        files,
+        ["every_construct.mas2g", "explorer.goal", "coordinator.goal"]
+    );
+    for r in &reports {
+        assert!(!r.has_errors(), "{}: {:?}", r.file, r.diagnostics);
+    }
+}
+
+/// Every `.mas2g` and `.test2g` shipped under `agents/` checks without errors (with the agent
+/// files a MAS names).
+#[test]
+fn shipped_mas_and_test_files_have_no_errors() {
+    fn walk(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
+        let mut paths: Vec<_> = entries.filter_map(|e| e.ok()).map(|e| e.path()).collect();
+        paths.sort();
+        for p in paths {
+            if p.is_dir() {
+                walk(&p, out);
+            } else if p.extension().is_some_and(|e| e == "mas2g" || e == "test2g") {
+                out.push(p);
+            }
+        }
+    }
+    let mut files = Vec::new();
+    walk(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("agents"),
+        &mut files,
+    );
+    if files.is_empty() {
+        println!("no .mas2g or .test2g files under agents/ yet");
+    }
+    for f in files {
+        for r in goal::syntax::check::check_path_with_agents(&f) {
+            let rendered: Vec<String> = r.diagnostics.iter().map(|d| d.render(&r.source)).collect();
+            assert!(!r.has_errors(), "{}:\n{}", r.file, rendered.join(""));
+        }
+    }
+}

@@ -250,3 +250,10 @@ fn prolog_files_reject_protected_predicates_and_directives() {
         ]
     );
 }
+
+#[test]
+fn macros_bind_only_what_their_bodies_bind() {
+    let src = main_with("#define free(X) not(bel(p(X))).\nif free(Y) then print(Y).");
+    let c = codes(&src).join(" ");
+    assert!(c.contains("E0113 5:23"), "{c}");
+}

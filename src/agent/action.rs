@@ -6,7 +6,7 @@ use super::cycle::Core;
 use super::error::Fault;
 use super::goals::Goal;
 use super::program::{Act, Program, SpecDef};
-use super::trace::Event;
+use super::trace::{Event, TraceLevel};
 use crate::term::{print::Style, Subst, Term};
 use rand::Rng;
 
@@ -28,7 +28,7 @@ impl Core {
                 let mut ev = Vec::new();
                 self.ms.update(&u, true, &mut ev)?;
                 self.changes(ev);
-                self.done(&Term::compound("insert", vec![u]))?;
+                self.done_with(|| Term::compound("insert", vec![u.clone()]));
                 self.check_goals()?;
                 Ok(Outcome::Done { real: true })
             }
@@ -37,7 +37,7 @@ impl Core {
                 let mut ev = Vec::new();
                 self.ms.delete(&u, &mut ev)?;
                 self.changes(ev);
-                self.done(&Term::compound("delete", vec![u]))?;
+                self.done_with(|| Term::compound("delete", vec![u.clone()]));
                 self.check_goals()?;
                 Ok(Outcome::Done { real: true })
             }
@@ -47,7 +47,7 @@ impl Core {
             Act::Drop(t) => {
                 let q = s.apply(t);
                 self.drop_goals(&q)?;
-                self.done(&Term::compound("drop", vec![q]))?;
+                self.done_with(|| Term::compound("drop", vec![q.clone()]));
                 Ok(Outcome::Done { real: true })
             }
             Act::Print(t) => {
@@ -57,7 +57,15 @@ impl Core {
                 Ok(Outcome::Done { real: true })
             }
             Act::Log(t) => {
-                let text = s.apply(t).to_text(Style::WRITE);
+                let t = s.apply(t);
+                let text = match t.to_text(Style::WRITE).as_str() {
+                    "bb" => join(self.ms.beliefs.iter()),
+                    "pb" => join(self.ms.percepts.facts().iter()),
+                    "mb" => join(self.ms.mailbox.facts().iter()),
+                    "gb" => join(self.ms.attention.current().goals().iter().map(|g| &g.term)),
+                    "kb" => format!("{} knowledge clauses", self.ms.knowledge.len()),
+                    other => other.to_string(),
+                };
                 self.changes(vec![Event::Log { text }]);
                 Ok(Outcome::Done { real: false })
             }
@@ -69,6 +77,15 @@ impl Core {
             } => self.send(to, *mood, content, *once, s),
             Act::Spec { spec, args } => self.user_action(&prog.specs[*spec], args, s),
             Act::ExitModule | Act::Module { .. } => Ok(Outcome::Done { real: false }),
+        }
+    }
+
+    /// Records an `ActionPerformed` event built only when the trace records changes.
+    pub fn done_with(&mut self, action: impl FnOnce() -> Term) {
+        if self.level >= TraceLevel::Changes {
+            self.event(Event::ActionPerformed {
+                action: action().to_string(),
+            });
         }
     }
 
@@ -100,14 +117,11 @@ impl Core {
         } else {
             self.ms.attention.current()
         };
-        if self
-            .ms
-            .is_goal_in(base, g, &mut self.rng, &mut self.kr_out)?
-        {
+        if self.ms.is_goal_in(base, g)? {
             self.failed(&act, "already a goal");
             return Ok(Outcome::NotRun);
         }
-        if self.ms.believes(g, &mut self.rng, &mut self.kr_out)? {
+        if self.ms.believes(g)? {
             self.failed(&act, "already believed");
             return Ok(Outcome::NotRun);
         }
@@ -131,11 +145,7 @@ impl Core {
         for i in 0..depth {
             let goals = self.ms.attention.all_mut()[i].goals().to_vec();
             for g in goals {
-                if !self
-                    .ms
-                    .in_goal(&g, q, &mut self.rng, &mut self.kr_out)?
-                    .is_empty()
-                {
+                if !self.ms.in_goal(&g, q)?.is_empty() {
                     victims.push((i, g.term.clone()));
                 }
             }
@@ -167,7 +177,7 @@ impl Core {
         }
         let head = Term::compound(spec.name, spec.params.clone());
         let pre = m.apply(&spec.pre);
-        let answers = self.ms.bel(&pre, &mut self.rng, &mut self.kr_out)?;
+        let answers = self.ms.bel(&pre)?;
         let grounding: Vec<Subst> = answers
             .iter()
             .map(|a| compose(&m, a))
@@ -214,11 +224,15 @@ impl Core {
     /// Blind commitment on the current attention set.
     pub fn check_goals(&mut self) -> Result<(), Fault> {
         let mut ev = Vec::new();
-        self.ms
-            .goal_check(&mut self.rng, &mut self.kr_out, &mut ev)?;
+        self.ms.goal_check(&mut ev)?;
         self.changes(ev);
         Ok(())
     }
+}
+
+/// Facts printed one per line (for `log(bb)` and friends).
+fn join<'a>(facts: impl Iterator<Item = &'a Term>) -> String {
+    facts.map(|f| f.to_string()).collect::<Vec<_>>().join("\n")
 }
 
 fn ground(s: &Subst, t: &Term, what: &str) -> Result<Term, Fault> {

@@ -7,7 +7,9 @@ use super::mental_state::MentalState;
 use super::program::Lit;
 use crate::syntax::ast::MentalOp;
 use crate::term::{Subst, Term};
-use rand_chacha::ChaCha8Rng;
+use std::collections::hash_map::DefaultHasher;
+use std::collections::HashMap;
+use std::hash::{Hash, Hasher};
 
 /// Extends `base` with the bindings of `answer`.
 pub fn compose(base: &Subst, answer: &Subst) -> Subst {
@@ -18,9 +20,41 @@ pub fn compose(base: &Subst, answer: &Subst) -> Subst {
     s
 }
 
-fn push_unique(out: &mut Vec<Subst>, s: Subst) {
-    if !out.contains(&s) {
-        out.push(s);
+/// An insertion-ordered set of answers (linear search while small, hashed beyond).
+#[derive(Default)]
+struct AnswerSet {
+    items: Vec<Subst>,
+    index: HashMap<u64, Vec<usize>>,
+}
+
+const HASH_FROM: usize = 16;
+
+fn hash_of(s: &Subst) -> u64 {
+    let mut h = DefaultHasher::new();
+    s.hash(&mut h);
+    h.finish()
+}
+
+impl AnswerSet {
+    fn push(&mut self, s: Subst) {
+        if self.items.len() < HASH_FROM {
+            if !self.items.contains(&s) {
+                self.items.push(s);
+                if self.items.len() == HASH_FROM {
+                    for (i, x) in self.items.iter().enumerate() {
+                        self.index.entry(hash_of(x)).or_default().push(i);
+                    }
+                }
+            }
+            return;
+        }
+        let h = hash_of(&s);
+        let slot = self.index.entry(h).or_default();
+        if slot.iter().any(|&i| self.items[i] == s) {
+            return;
+        }
+        slot.push(self.items.len());
+        self.items.push(s);
     }
 }
 
@@ -32,22 +66,16 @@ pub struct CondCtx<'a> {
 }
 
 /// All answers of the condition `lits` extending `base`.
-pub fn eval(
-    cx: &CondCtx<'_>,
-    lits: &[Lit],
-    base: &Subst,
-    rng: &mut ChaCha8Rng,
-    out: &mut String,
-) -> Result<Vec<Subst>, Fault> {
+pub fn eval(cx: &CondCtx<'_>, lits: &[Lit], base: &Subst) -> Result<Vec<Subst>, Fault> {
     let mut answers = vec![base.clone()];
     for lit in lits {
-        let mut next = Vec::new();
+        let mut next = AnswerSet::default();
         for theta in &answers {
-            for a in literal(cx, lit, theta, rng, out)? {
-                push_unique(&mut next, a);
+            for a in literal(cx, lit, theta)? {
+                next.push(a);
             }
         }
-        answers = next;
+        answers = next.items;
         if answers.is_empty() {
             break;
         }
@@ -56,13 +84,7 @@ pub fn eval(
 }
 
 /// The answers of one literal under `theta` (each extends `theta`).
-fn literal(
-    cx: &CondCtx<'_>,
-    lit: &Lit,
-    theta: &Subst,
-    rng: &mut ChaCha8Rng,
-    out: &mut String,
-) -> Result<Vec<Subst>, Fault> {
+fn literal(cx: &CondCtx<'_>, lit: &Lit, theta: &Subst) -> Result<Vec<Subst>, Fault> {
     let Lit::Mental {
         negated,
         top_level,
@@ -74,9 +96,9 @@ fn literal(
     };
     let q = theta.apply(query);
     let ms = cx.ms;
-    let mut raw: Vec<Subst> = Vec::new();
+    let mut raw = AnswerSet::default();
     match op {
-        MentalOp::Bel => raw = ms.bel(&q, rng, out)?,
+        MentalOp::Bel => raw.items = ms.bel(&q)?,
         MentalOp::Goal | MentalOp::AGoal | MentalOp::GoalA => {
             let single;
             let goals: &[Goal] = match (top_level, cx.only) {
@@ -88,7 +110,7 @@ fn literal(
                 (false, None) => ms.attention.current().goals(),
             };
             for g in goals {
-                for a in ms.in_goal(g, &q, rng, out)? {
+                for a in ms.in_goal(g, &q)? {
                     if *op != MentalOp::Goal {
                         let inst = a.apply(&q);
                         if !inst.is_ground() {
@@ -105,24 +127,24 @@ fn literal(
                                 binding: Some(show_subst(theta)),
                             });
                         }
-                        let believed = ms.believes(&inst, rng, out)?;
+                        let believed = ms.believes(&inst)?;
                         if believed != (*op == MentalOp::GoalA) {
                             continue;
                         }
                     }
-                    push_unique(&mut raw, a);
+                    raw.push(a);
                 }
             }
         }
     }
     if *negated {
-        return Ok(if raw.is_empty() {
+        return Ok(if raw.items.is_empty() {
             vec![theta.clone()]
         } else {
             Vec::new()
         });
     }
-    Ok(raw.iter().map(|a| compose(theta, a)).collect())
+    Ok(raw.items.iter().map(|a| compose(theta, a)).collect())
 }
 
 /// The positive `goal`/`a-goal` literals of a condition, instantiated (for focus=filter).

@@ -135,7 +135,10 @@ impl Agent {
             &Term::atom(name),
             &others,
             config.limits,
+            config.seed ^ 0x9e37_79b9_7f4a_7c15,
         );
+        let mut ms = ms;
+        ms.record = config.trace >= TraceLevel::Changes;
         Agent {
             program,
             core: Core {
@@ -198,6 +201,8 @@ impl Agent {
                 self.stop(StopReason::Error(e));
             }
         }
+        let kr_text = self.core.ms.take_output();
+        self.core.kr_out.push_str(&kr_text);
         if !self.core.kr_out.is_empty() {
             let text = std::mem::take(&mut self.core.kr_out);
             self.core
@@ -227,12 +232,13 @@ impl Agent {
         let prog = self.program.clone();
         let core = &mut self.core;
         let ch = core.ms.percepts.apply(percepts, &self.types);
-        for p in ch.removed {
+        let record = core.level >= TraceLevel::Changes;
+        for p in ch.removed.iter().filter(|_| record) {
             core.event(Event::PerceptRemoved {
                 percept: p.to_string(),
             });
         }
-        for p in ch.added {
+        for p in ch.added.iter().filter(|_| record) {
             core.event(Event::PerceptAdded {
                 percept: p.to_string(),
             });
@@ -256,7 +262,7 @@ impl Agent {
             self.main_entered = true;
             let f = core
                 .enter(&prog, prog.main, &[], None)
-                .map_err(|e| core.error(&prog, None, e))?;
+                .map_err(|e| core.module_error(&prog, prog.main, e))?;
             self.main.push(Frame::Module(f));
         }
         match core.run(&prog, &mut self.main, true)? {
@@ -273,7 +279,7 @@ impl Agent {
         let core = &mut self.core;
         let f = core
             .enter(prog, idx, &[], None)
-            .map_err(|e| core.error(prog, None, e))?;
+            .map_err(|e| core.module_error(prog, idx, e))?;
         let mut stack = vec![Frame::Module(f)];
         core.run(prog, &mut stack, false)?;
         Ok(())

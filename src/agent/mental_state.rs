@@ -3,12 +3,12 @@
 
 use super::error::Fault;
 use super::goals::{AttentionStack, Goal, GoalBase};
-use super::kr_bridge::{query, FactBase, Knowledge, Limits, View};
+use super::kr_bridge::{Engine, FactBase, Knowledge, KrError, Limits, NativeEngine, View};
 use super::mailbox::{is_mail_fact, Mailbox};
 use super::percepts::PerceptBase;
 use super::trace::Event;
 use crate::term::{well_known as wk, Subst, Term};
-use rand_chacha::ChaCha8Rng;
+use std::cell::RefCell;
 use std::sync::Arc;
 
 /// The stores of an agent.
@@ -21,7 +21,11 @@ pub struct MentalState {
     /// `agent(A)` for every known agent and `me(Self)`.
     pub agents: FactBase,
     pub attention: AttentionStack,
-    pub limits: Limits,
+    /// The KR engine (limits, its own seeded RNG and output buffer); interior mutability lets
+    /// queries run while conditions hold a shared borrow of the state.
+    pub engine: RefCell<NativeEngine>,
+    /// Record change events (off when the trace level is `Off`, to save the printing).
+    pub record: bool,
 }
 
 /// The effect of an update on the belief base and mailbox.
@@ -32,7 +36,13 @@ pub struct UpdateEffect {
 
 impl MentalState {
     /// An empty mental state for agent `me` knowing `agents`.
-    pub fn new(knowledge: Arc<Knowledge>, me: &Term, agents: &[Term], limits: Limits) -> Self {
+    pub fn new(
+        knowledge: Arc<Knowledge>,
+        me: &Term,
+        agents: &[Term],
+        limits: Limits,
+        seed: u64,
+    ) -> Self {
         let mut facts = FactBase::new();
         for a in agents {
             facts.insert(Term::compound(wk::AGENT, vec![a.clone()]));
@@ -46,72 +56,74 @@ impl MentalState {
             mailbox: Mailbox::default(),
             agents: facts,
             attention: AttentionStack::default(),
-            limits,
+            engine: RefCell::new(NativeEngine::new(seed).with_limits(limits)),
+            record: true,
         }
     }
 
     /// All answers of `q` against the belief base (knowledge, beliefs, percepts, mail, agents).
-    pub fn bel(
-        &self,
-        q: &Term,
-        rng: &mut ChaCha8Rng,
-        out: &mut String,
-    ) -> Result<Vec<Subst>, Fault> {
-        let bases = [
-            &self.beliefs,
-            self.percepts.facts(),
-            self.mailbox.facts(),
-            &self.agents,
-        ];
-        let view = View {
-            knowledge: &self.knowledge,
-            bases: &bases,
-            goal_facts: &[],
-        };
-        query(&view, q, self.limits, rng, out).map_err(|e| Fault::new(format!("query {q}: {e}")))
+    pub fn bel(&self, q: &Term) -> Result<Vec<Subst>, Fault> {
+        let bases = self.bases();
+        let view = View::beliefs(&self.knowledge, &bases);
+        self.run(|e| e.query(&view, q), q)
     }
 
     /// True when `q` has an answer in the belief base.
-    pub fn believes(
-        &self,
-        q: &Term,
-        rng: &mut ChaCha8Rng,
-        out: &mut String,
-    ) -> Result<bool, Fault> {
-        Ok(!self.bel(q, rng, out)?.is_empty())
+    pub fn believes(&self, q: &Term) -> Result<bool, Fault> {
+        let bases = self.bases();
+        let view = View::beliefs(&self.knowledge, &bases);
+        self.run(|e| e.holds(&view, q), q)
     }
 
     /// All answers of `q` against one goal's facts plus knowledge.
-    pub fn in_goal(
-        &self,
-        g: &Goal,
-        q: &Term,
-        rng: &mut ChaCha8Rng,
-        out: &mut String,
-    ) -> Result<Vec<Subst>, Fault> {
-        let view = View {
-            knowledge: &self.knowledge,
-            bases: &[],
-            goal_facts: &g.facts,
-        };
-        query(&view, q, self.limits, rng, out)
-            .map_err(|e| Fault::new(format!("goal query {q}: {e}")))
+    pub fn in_goal(&self, g: &Goal, q: &Term) -> Result<Vec<Subst>, Fault> {
+        let view = View::goal(&self.knowledge, &g.facts);
+        self.run(|e| e.query(&view, q), q)
+    }
+
+    /// True when one goal's facts plus knowledge entail `q`.
+    pub fn goal_holds(&self, g: &Goal, q: &Term) -> Result<bool, Fault> {
+        let view = View::goal(&self.knowledge, &g.facts);
+        self.run(|e| e.holds(&view, q), q)
     }
 
     /// True when some goal of `base` entails `q`.
-    pub fn is_goal_in(
-        &self,
-        base: &GoalBase,
-        q: &Term,
-        rng: &mut ChaCha8Rng,
-        out: &mut String,
-    ) -> Result<bool, Fault> {
+    pub fn is_goal_in(&self, base: &GoalBase, q: &Term) -> Result<bool, Fault> {
         for g in base.goals() {
-            if !self.in_goal(g, q, rng, out)?.is_empty() {
+            if self.goal_holds(g, q)? {
                 return Ok(true);
             }
         }
         Ok(false)
+    }
+
+    fn bases(&self) -> [&FactBase; 5] {
+        [
+            &self.beliefs,
+            self.percepts.facts(),
+            self.mailbox.facts(),
+            &self.agents,
+            self.percepts.batch(),
+        ]
+    }
+
+    fn run<T>(
+        &self,
+        f: impl FnOnce(&mut NativeEngine) -> Result<T, KrError>,
+        q: &Term,
+    ) -> Result<T, Fault> {
+        match self.engine.try_borrow_mut() {
+            Ok(mut e) => f(&mut e).map_err(|e| Fault::new(format!("query {q}: {e}"))),
+            Err(_) => Err(Fault::new("the KR engine is busy (re-entrant query)")),
+        }
+    }
+
+    /// Text written by Prolog output built-ins since the last call.
+    pub fn take_output(&self) -> String {
+        match self.engine.try_borrow_mut() {
+            Ok(mut e) => e.take_output(),
+            Err(_) => String::new(),
+        }
     }
 
     /// Applies an update (a ground conjunction of literals; `not(p)` deletes `p`): deletes
@@ -175,12 +187,12 @@ impl MentalState {
     fn add_fact(&mut self, f: &Term, events: &mut Vec<Event>) {
         if is_mail_fact(f) {
             if self.mailbox.insert(f.clone()) {
-                events.push(Event::MailAdded {
+                self.record_into(events, || Event::MailAdded {
                     fact: f.to_string(),
                 });
             }
         } else if self.beliefs.insert(f.clone()) {
-            events.push(Event::BeliefInserted {
+            self.record_into(events, || Event::BeliefInserted {
                 fact: f.to_string(),
             });
         }
@@ -189,27 +201,28 @@ impl MentalState {
     fn remove_fact(&mut self, f: &Term, events: &mut Vec<Event>) {
         if is_mail_fact(f) {
             if self.mailbox.delete(f) {
-                events.push(Event::MailDeleted {
+                self.record_into(events, || Event::MailDeleted {
                     fact: f.to_string(),
                 });
             }
         } else if self.beliefs.delete(f) {
-            events.push(Event::BeliefDeleted {
+            self.record_into(events, || Event::BeliefDeleted {
                 fact: f.to_string(),
             });
         }
     }
 
+    fn record_into(&self, events: &mut Vec<Event>, e: impl FnOnce() -> Event) {
+        if self.record {
+            events.push(e());
+        }
+    }
+
     /// Blind commitment: removes every goal of the current attention set that is believed.
-    pub fn goal_check(
-        &mut self,
-        rng: &mut ChaCha8Rng,
-        out: &mut String,
-        events: &mut Vec<Event>,
-    ) -> Result<(), Fault> {
+    pub fn goal_check(&mut self, events: &mut Vec<Event>) -> Result<(), Fault> {
         let mut achieved = Vec::new();
         for g in self.attention.current().goals() {
-            if self.believes(&g.term, rng, out)? {
+            if self.believes(&g.term)? {
                 achieved.push(g.term.clone());
             }
         }

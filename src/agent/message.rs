@@ -105,7 +105,7 @@ impl Core {
             self.event(e);
         }
         let name = if once { "sendonce" } else { "send" };
-        self.done(&Term::compound(name, vec![wrapped]))?;
+        self.done_with(|| Term::compound(name, vec![wrapped]));
         self.check_goals()?;
         Ok(Outcome::Done { real: true })
     }

@@ -6,6 +6,7 @@
 //! printed lines, and a [`StopReason`] once the agent stopped).
 
 pub mod action;
+mod compile;
 pub mod condition;
 pub mod cycle;
 pub mod error;

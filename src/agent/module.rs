@@ -122,7 +122,7 @@ impl Core {
             (Focus::Filter, Some((cs, _, lits))) => {
                 let mut base = GoalBase::default();
                 for g in goal_literals(lits, cs) {
-                    if g.is_ground() && !self.ms.believes(&g, &mut self.rng, &mut self.kr_out)? {
+                    if g.is_ground() && !self.ms.believes(&g)? {
                         base.add(Goal::new(g));
                     }
                 }
@@ -190,8 +190,10 @@ impl Core {
                     if f.exiting {
                         let f = f.clone();
                         stack.pop();
-                        self.leave(prog, &f)
-                            .map_err(|e| self.error(prog, None, e))?;
+                        self.leave(prog, &f).map_err(|e| match f.module {
+                            Some(m) => self.module_error(prog, m, e),
+                            None => self.error(prog, None, e),
+                        })?;
                         if stack.is_empty() {
                             return Ok(RunEnd::Finished);
                         }
@@ -360,6 +362,17 @@ impl Core {
             });
         }
         Ok(())
+    }
+
+    /// A runtime error located at a module head.
+    pub fn module_error(&self, prog: &Program, module: usize, f: Fault) -> RuntimeError {
+        let mut e = self.error(prog, None, f);
+        e.line = prog.modules.get(module).map_or(0, |m| m.line);
+        e.rule = prog
+            .modules
+            .get(module)
+            .map(|m| format!("module {}", m.name));
+        e
     }
 
     /// A runtime error with file, line and rule.

@@ -59,6 +59,8 @@ pub struct PerceptChanges {
 #[derive(Clone, Debug, Default)]
 pub struct PerceptBase {
     facts: FactBase,
+    /// The raw batch of the current cycle as `newpercept(P)` facts (for edge-triggered rules).
+    batch: FactBase,
 }
 
 fn wrap(p: &Term) -> Term {
@@ -71,6 +73,11 @@ impl PerceptBase {
         &self.facts
     }
 
+    /// The current cycle's raw batch as `newpercept(P)` facts.
+    pub fn batch(&self) -> &FactBase {
+        &self.batch
+    }
+
     /// True when `p` is currently perceived.
     pub fn contains(&self, p: &Term) -> bool {
         self.facts.contains(&wrap(p))
@@ -79,6 +86,13 @@ impl PerceptBase {
     /// Applies one batch according to the types.
     pub fn apply(&mut self, batch: &[Term], types: &PerceptTypes) -> PerceptChanges {
         let mut ch = PerceptChanges::default();
+        if !self.batch.is_empty() {
+            self.batch.clear();
+        }
+        for p in batch {
+            self.batch
+                .insert(Term::compound(Sym::intern("newpercept"), vec![p.clone()]));
+        }
         let mut positive: Vec<&Term> = Vec::new();
         let mut negative: Vec<&Term> = Vec::new();
         for p in batch {

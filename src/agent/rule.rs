@@ -6,7 +6,7 @@ use super::cycle::Core;
 use super::error::Fault;
 use super::goals::Goal;
 use super::program::{RuleDef, RuleKind};
-use super::trace::Event;
+use super::trace::{Event, TraceLevel};
 use crate::term::{Subst, Sym, Term};
 use rand::seq::SliceRandom;
 
@@ -29,7 +29,7 @@ impl Core {
                     ms: &self.ms,
                     only: Some(g),
                 };
-                for s in eval(&cx, &rule.cond, base, &mut self.rng, &mut self.kr_out)? {
+                for s in eval(&cx, &rule.cond, base)? {
                     match answers.iter_mut().find(|a| a.subst == s) {
                         Some(a) => a.goals.push(g.clone()),
                         None => answers.push(Answer {
@@ -44,7 +44,7 @@ impl Core {
                 ms: &self.ms,
                 only: None,
             };
-            answers = eval(&cx, &rule.cond, base, &mut self.rng, &mut self.kr_out)?
+            answers = eval(&cx, &rule.cond, base)?
                 .into_iter()
                 .map(|subst| Answer {
                     subst,
@@ -52,10 +52,12 @@ impl Core {
                 })
                 .collect();
         }
-        self.event(Event::RuleEvaluated {
-            rule: rule.label.to_string(),
-            answers: answers.len(),
-        });
+        if self.level >= TraceLevel::Rules {
+            self.event(Event::RuleEvaluated {
+                rule: rule.label.to_string(),
+                answers: answers.len(),
+            });
+        }
         match &rule.kind {
             RuleKind::If => answers.shuffle(&mut self.rng),
             RuleKind::Forall => {}
@@ -88,6 +90,9 @@ impl Core {
 
     /// Records that a rule's body runs for an answer.
     pub fn fired(&mut self, rule: &RuleDef, s: &Subst) {
+        if self.level < TraceLevel::Rules {
+            return;
+        }
         self.event(Event::RuleFired {
             rule: rule.label.to_string(),
             bindings: show_subst(s),

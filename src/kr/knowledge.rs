@@ -237,6 +237,14 @@ impl Knowledge {
         self.clause_count == 0
     }
 
+    /// The predicates defined by knowledge clauses, in order of first definition.
+    pub fn predicates(&self) -> Vec<(Sym, usize)> {
+        self.preds
+            .iter()
+            .map(|p| (p.name, p.arity as usize))
+            .collect()
+    }
+
     /// True when knowledge clauses define `name/arity`.
     pub fn defines(&self, name: Sym, arity: usize) -> bool {
         matches!(

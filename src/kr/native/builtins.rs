@@ -63,7 +63,7 @@ builtins! {
     SplitString "split_string" [4] false; NumberString "number_string" [2] false;
     StringLower "string_lower" [2] false; StringUpper "string_upper" [2] false;
     StringCode "string_code" [3] false; TextConcat "text_concat" [3] false;
-    AtomicListConcat "atomic_list_concat" [2, 3] false; StringNumber "string_number" [2] true;
+    AtomicListConcat "atomic_list_concat" [2, 3] false;
     Write "write" [1, 2] false; Print "print" [1, 2] false; Writeln "writeln" [1, 2] false;
     Writeq "writeq" [1, 2] false; WriteCanonical "write_canonical" [1, 2] false;
     WriteTerm "write_term" [2, 3] false;
@@ -83,7 +83,7 @@ builtins! {
     OrdDelElement "ord_del_element" [3] true; OrdSubset "ord_subset" [2] true;
     ListToOrdSet "list_to_ord_set" [2] true; OrdEmpty "ord_empty" [1] true;
     SumEval "$sum_eval" [2] false; MaxEval "$max_eval" [3] false; BagofPrep "$bagof_prep" [4] false;
-    BagofGroups "$bagof_groups" [2] false; LengthCheck "$length_check" [2] false;
+    BagofGroups "$bagof_groups" [2] false;
 }
 
 /// True when programs may redefine this built-in (SWI library predicates).
@@ -466,20 +466,10 @@ fn bagof_groups(s: &mut Solver, p: u32) -> KrResult<Flow> {
     pairs.sort_by(|a, b| s.m.st.compare(a.0, b.0));
     let mut groups: Vec<(Cell, Vec<Cell>)> = Vec::new();
     for (w, t) in pairs {
+        let member = s.m.st.new_struct(wk::MINUS, &[w, t]);
         match groups.iter_mut().find(|(k, _)| s.m.st.variant(*k, w)) {
-            Some((k, v)) => {
-                // Later witnesses of the group are unified with the first one.
-                let k = *k;
-                v.push(t);
-                let _ = k;
-                let marker = s.m.st.new_struct(wk::MINUS, &[w, t]);
-                v.pop();
-                v.push(marker);
-            }
-            None => {
-                let marker = s.m.st.new_struct(wk::MINUS, &[w, t]);
-                groups.push((w, vec![marker]));
-            }
+            Some((_, v)) => v.push(member),
+            None => groups.push((w, vec![member])),
         }
     }
     let mut out = Vec::new();

@@ -106,6 +106,10 @@ impl Code {
 
     /// Copies a heap term into this code (variables numbered through `vars`, by address).
     pub fn add_cell(&mut self, store: &Store, c: Cell, vars: &mut Vec<u32>) -> Cell {
+        match store.deref(c) {
+            c @ (Cell::Atom(_) | Cell::Int(_) | Cell::Flt(_)) => return c,
+            _ => {}
+        }
         let mut root = UNSET;
         let mut work: Vec<(Option<usize>, Cell)> = vec![(None, c)];
         while let Some((slot, c)) = work.pop() {
@@ -147,6 +151,7 @@ impl Code {
     }
 
     /// Builds the code term `root` on the heap, binding unset slots to fresh variables.
+    #[inline]
     pub fn build(&self, store: &mut Store, root: Cell, slots: &mut [Cell]) -> Cell {
         match root {
             Cell::Ref(n) => {
@@ -158,45 +163,115 @@ impl Code {
             }
             Cell::Str(i) => store.new_str(self.strs[i as usize].clone()),
             Cell::Ptr(off) => {
-                let base = store.heap.len() as u32;
                 let mut work = std::mem::take(&mut store.build_work);
-                work.clear();
-                work.push((base, off));
-                store.heap.push(UNSET);
-                while let Some((dst, off)) = work.pop() {
-                    let Cell::Fun(f, n) = self.cells[off as usize] else {
-                        continue;
-                    };
-                    let p = store.heap.len() as u32;
-                    store.heap.push(Cell::Fun(f, n));
-                    store.heap[dst as usize] = Cell::Ptr(p);
-                    for i in 0..n {
-                        let a = p + 1 + i;
-                        let c = match self.cells[(off + 1 + i) as usize] {
-                            Cell::Ref(k) => {
-                                let s = &mut slots[k as usize];
-                                if let Cell::Ref(u32::MAX) = *s {
-                                    *s = Cell::Ref(a);
-                                }
-                                *s
-                            }
-                            Cell::Str(j) => {
-                                store.strs.push(self.strs[j as usize].clone());
-                                Cell::Str(store.strs.len() as u32 - 1)
-                            }
-                            Cell::Ptr(o) => {
-                                work.push((a, o));
-                                UNSET
-                            }
-                            other => other,
-                        };
-                        store.heap.push(c);
-                    }
+                let p = self.build_struct(store, off, slots, &mut work);
+                while let Some((dst, o)) = work.pop() {
+                    let q = self.build_struct(store, o, slots, &mut work);
+                    store.heap[dst as usize] = Cell::Ptr(q);
                 }
                 store.build_work = work;
-                store.heap[base as usize]
+                Cell::Ptr(p)
             }
             other => other,
+        }
+    }
+
+    /// Copies the structure at `off` to the heap; nested structures are left to `work`.
+    #[inline]
+    fn build_struct(
+        &self,
+        store: &mut Store,
+        off: u32,
+        slots: &mut [Cell],
+        work: &mut Vec<(u32, u32)>,
+    ) -> u32 {
+        let f = self.cells[off as usize];
+        let n = f.fun().map_or(0, |f| f.1);
+        let p = store.heap.len() as u32;
+        store.heap.push(f);
+        for i in 0..n {
+            let a = p + 1 + i;
+            let c = match self.cells[(off + 1 + i) as usize] {
+                Cell::Ref(k) => {
+                    let s = &mut slots[k as usize];
+                    if let Cell::Ref(u32::MAX) = *s {
+                        *s = Cell::Ref(a);
+                    }
+                    *s
+                }
+                Cell::Str(j) => {
+                    store.strs.push(self.strs[j as usize].clone());
+                    Cell::Str(store.strs.len() as u32 - 1)
+                }
+                Cell::Ptr(o) => {
+                    work.push((a, o));
+                    UNSET
+                }
+                other => other,
+            };
+            store.heap.push(c);
+        }
+        p
+    }
+
+    /// Like [`Code::unify`], with the common cases (a new variable, a constant) inline.
+    #[inline]
+    pub fn unify_arg(&self, store: &mut Store, code: Cell, heap: Cell, slots: &mut [Cell]) -> bool {
+        match code {
+            Cell::Ref(n) if matches!(slots[n as usize], Cell::Ref(u32::MAX)) => {
+                slots[n as usize] = heap;
+                true
+            }
+            Cell::Atom(x) => match store.deref(heap) {
+                Cell::Atom(y) => x == y,
+                Cell::Ref(a) => {
+                    store.bind(a, code);
+                    true
+                }
+                _ => false,
+            },
+            Cell::Int(x) => match store.deref(heap) {
+                Cell::Int(y) => x == y,
+                Cell::Ref(a) => {
+                    store.bind(a, code);
+                    true
+                }
+                _ => false,
+            },
+            Cell::Ptr(off) => match store.deref(heap) {
+                Cell::Ptr(p) => {
+                    let f = self.cells[off as usize];
+                    if store.heap[p as usize].fun() != f.fun() {
+                        return false;
+                    }
+                    let n = f.fun().map_or(0, |f| f.1);
+                    for i in 0..n {
+                        let c = self.cells[(off + 1 + i) as usize];
+                        let h = store.heap[(p + 1 + i) as usize];
+                        let ok = match c {
+                            Cell::Ref(k) if matches!(slots[k as usize], Cell::Ref(u32::MAX)) => {
+                                slots[k as usize] = h;
+                                true
+                            }
+                            _ => self.unify(store, c, h, slots),
+                        };
+                        if !ok {
+                            return false;
+                        }
+                    }
+                    true
+                }
+                Cell::Ref(a) => {
+                    let t = self.build(store, code, slots);
+                    if store.occurs_check && store.occurs(a, t) {
+                        return false;
+                    }
+                    store.bind(a, t);
+                    true
+                }
+                _ => false,
+            },
+            _ => self.unify(store, code, heap, slots),
         }
     }
 

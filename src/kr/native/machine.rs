@@ -554,7 +554,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             for i in 0..pred.arity {
                 let c = cl.code.cells[(off + 1 + i) as usize];
                 let h = m.st.heap[(gp + 1 + i) as usize];
-                if !cl.code.unify(&mut m.st, c, h, &mut m.slots) {
+                if !cl.code.unify_arg(&mut m.st, c, h, &mut m.slots) {
                     return false;
                 }
             }
@@ -688,6 +688,35 @@ impl<'a, 'm> Solver<'a, 'm> {
     /// Unifies a heap term with a stored fact without copying the fact (only the parts bound
     /// to variables are copied).
     pub fn unify_fact(&mut self, c: Cell, t: &Term) -> bool {
+        // Fast path: the arguments of a fact are usually atomic.
+        if let (Cell::Ptr(p), Term::Compound(k)) = (self.m.st.deref(c), t) {
+            if self.m.st.heap[p as usize].fun() != Some((k.name, k.args.len() as u32)) {
+                return false;
+            }
+            for (i, a) in k.args.iter().enumerate() {
+                if !self.unify_fact_arg(self.a(p, i as u32), a) {
+                    return false;
+                }
+            }
+            return true;
+        }
+        self.unify_fact_arg(c, t)
+    }
+
+    fn unify_fact_arg(&mut self, c: Cell, t: &Term) -> bool {
+        match (self.m.st.deref(c), t) {
+            (Cell::Atom(x), Term::Atom(y)) => return x == *y,
+            (Cell::Int(x), Term::Int(y)) => return x == *y,
+            (Cell::Ref(a), Term::Atom(y)) => {
+                self.m.st.bind(a, Cell::Atom(*y));
+                return true;
+            }
+            (Cell::Ref(a), Term::Int(y)) => {
+                self.m.st.bind(a, Cell::Int(*y));
+                return true;
+            }
+            _ => {}
+        }
         let mut work: Vec<(Cell, &Term)> = vec![(c, t)];
         while let Some((c, t)) = work.pop() {
             let c = self.m.st.deref(c);

@@ -154,15 +154,6 @@ impl Store {
         self.heap[(p + 1 + i) as usize]
     }
 
-    /// The text of an atom or string cell.
-    pub fn text(&self, c: Cell) -> Option<&str> {
-        match self.deref(c) {
-            Cell::Atom(s) => Some(s.name()),
-            Cell::Str(i) => Some(&self.strs[i as usize]),
-            _ => None,
-        }
-    }
-
     /// If `c` is a list cell `[H|T]`, its head and tail.
     #[inline]
     pub fn cons(&self, c: Cell) -> Option<(Cell, Cell)> {
@@ -362,6 +353,10 @@ impl Store {
 
     /// Standard order of terms (like [`Term::compare`]; variables by age).
     pub fn compare(&self, a: Cell, b: Cell) -> Ordering {
+        let (a, b) = (self.deref(a), self.deref(b));
+        if !matches!((a, b), (Cell::Ptr(_), Cell::Ptr(_))) {
+            return self.compare_shallow(a, b);
+        }
         let mut stack = vec![(a, b)];
         while let Some((a, b)) = stack.pop() {
             let a = self.deref(a);
@@ -414,6 +409,30 @@ impl Store {
             }
         }
         Ordering::Equal
+    }
+
+    /// Standard order of two dereferenced cells that are not both compound.
+    fn compare_shallow(&self, a: Cell, b: Cell) -> Ordering {
+        let o = Self::order_class(a).cmp(&Self::order_class(b));
+        if o != Ordering::Equal {
+            return o;
+        }
+        match (a, b) {
+            (Cell::Ref(x), Cell::Ref(y)) => x.cmp(&y),
+            (Cell::Int(x), Cell::Int(y)) => x.cmp(&y),
+            (Cell::Flt(x), Cell::Flt(y)) => x.total_cmp(&y),
+            (Cell::Int(x), Cell::Flt(y)) => Term::Int(x).compare(&Term::Float(Float(y))),
+            (Cell::Flt(x), Cell::Int(y)) => Term::Float(Float(x)).compare(&Term::Int(y)),
+            (Cell::Atom(x), Cell::Atom(y)) => {
+                if x == y {
+                    Ordering::Equal
+                } else {
+                    x.name().cmp(y.name())
+                }
+            }
+            (Cell::Str(x), Cell::Str(y)) => self.strs[x as usize].cmp(&self.strs[y as usize]),
+            _ => Ordering::Equal,
+        }
     }
 
     /// True when the two terms are variants of each other (equal up to renaming of variables).

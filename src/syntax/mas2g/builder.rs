@@ -93,8 +93,9 @@ fn environment(
         }
     }
     let mut kept: Vec<InitParam> = Vec::new();
+    let mut keys: std::collections::BTreeSet<String> = Default::default();
     for p in init.unwrap_or_default() {
-        if kept.iter().any(|k| k.key.value == p.key.value) {
+        if !keys.insert(p.key.value.clone()) {
             diags.push(
                 Diagnostic::warning(
                     "W0202",
@@ -131,12 +132,12 @@ fn environment(
 
 /// Reports a duplicated option key; true if `key` was already seen.
 fn duplicate(
-    seen: &mut Vec<String>,
+    seen: &mut std::collections::BTreeSet<String>,
     p: &RawParam,
     file: &str,
     diags: &mut Vec<Diagnostic>,
 ) -> bool {
-    if seen.contains(&p.key.value) {
+    if !seen.insert(p.key.value.clone()) {
         diags.push(Diagnostic::warning(
             "W0204",
             format!("duplicate option `{}`; the first one is used", p.key.value),
@@ -145,7 +146,6 @@ fn duplicate(
         ));
         return true;
     }
-    seen.push(p.key.value.clone());
     false
 }
 
@@ -174,7 +174,7 @@ fn agent_file(raw: RawAgentFile, file: &str, diags: &mut Vec<Diagnostic>) -> Age
         language: None,
         span: raw.span,
     };
-    let mut seen = Vec::new();
+    let mut seen = std::collections::BTreeSet::new();
     for p in &raw.params {
         if duplicate(&mut seen, p, file, diags) {
             continue;
@@ -231,7 +231,7 @@ fn launch_rule(raw: RawLaunchRule, file: &str, diags: &mut Vec<Diagnostic>) -> L
         RawEntitySpec::Any(s) => EntitySpec::Any(s),
         RawEntitySpec::Constraints(params, span) => {
             let (mut name, mut entity_type, mut max) = (None, None, None);
-            let mut seen = Vec::new();
+            let mut seen = std::collections::BTreeSet::new();
             for p in &params {
                 if duplicate(&mut seen, p, file, diags) {
                     continue;

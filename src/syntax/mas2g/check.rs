@@ -159,12 +159,10 @@ pub fn check_files(mas: &MasFile, base_dir: &Path) -> Vec<Diagnostic> {
 /// The paths of the agent files named in `mas`, resolved against `base_dir` (the first entry of
 /// each reference name only).
 pub fn agent_file_paths(mas: &MasFile, base_dir: &Path) -> Vec<PathBuf> {
-    let mut seen = Vec::new();
+    let mut seen = std::collections::BTreeSet::new();
     let mut out = Vec::new();
     for f in &mas.agent_files {
-        let name = f.reference_name();
-        if !seen.contains(&name) {
-            seen.push(name);
+        if seen.insert(f.reference_name()) {
             out.push(base_dir.join(&f.path.value));
         }
     }

@@ -69,6 +69,58 @@ impl<'a> Used<'a> {
     }
 }
 
+/// Variables in the actions that a test runs (`do ...` and `in do ...`) can never be bound.
+pub fn check_ground(test: &MasTest) -> Vec<Diagnostic> {
+    let mut diags = Vec::new();
+    let combos = test
+        .agents
+        .iter()
+        .flat_map(|a| &a.tests)
+        .flat_map(|t| &t.sections)
+        .map(|s| match s {
+            TestSection::Do { combo, .. } | TestSection::Evaluate { combo, .. } => combo.as_slice(),
+            TestSection::Assert { .. } => &[],
+        });
+    for a in combos.flatten() {
+        let terms: Vec<&crate::syntax::prolog::Located> = match &a.kind {
+            ActionKind::Adopt { content, .. }
+            | ActionKind::Drop { content, .. }
+            | ActionKind::Insert { content, .. }
+            | ActionKind::Delete { content, .. } => vec![content],
+            ActionKind::Send { mood, content, .. } | ActionKind::SendOnce { mood, content, .. } => {
+                if *mood == crate::syntax::ast::Mood::Interrogative {
+                    vec![]
+                } else {
+                    vec![content]
+                }
+            }
+            ActionKind::Print(t) | ActionKind::Log(t) => vec![t],
+            ActionKind::Call { args, .. } => args.iter().collect(),
+            ActionKind::ExitModule | ActionKind::BuiltinModule(_) => vec![],
+        };
+        let found = terms.into_iter().find_map(|t| {
+            crate::syntax::validate::terms::var_occurrences(t)
+                .into_iter()
+                .next()
+        });
+        if let Some((v, span)) = found {
+            diags.push(
+                Diagnostic::error(
+                    "E0311",
+                    format!(
+                        "variable `{}` in a test action can never be bound",
+                        crate::syntax::validate::terms::var_name(v)
+                    ),
+                    test.file.clone(),
+                    span,
+                )
+                .with_hint("actions that a test runs must be ground: write the value"),
+            );
+        }
+    }
+    diags
+}
+
 /// Checks the calls and macro uses of `test` against the programs of the tested agents.
 pub fn check_calls(test: &MasTest, mas: &MasFile, mas_dir: &Path) -> Vec<Diagnostic> {
     let mut diags = Vec::new();

@@ -4,17 +4,18 @@
 use super::ast::MasTest;
 use crate::diag::Diagnostic;
 use crate::syntax::mas2g;
+use std::collections::BTreeSet;
 use std::path::Path;
 
 /// Checks `test`, whose MAS path is relative to `base_dir` (the test file's directory).
 pub fn check_files(test: &MasTest, base_dir: &Path) -> Vec<Diagnostic> {
     let file = test.file.as_str();
-    let mut diags = Vec::new();
-    let mut seen_agents: Vec<&str> = Vec::new();
+    let mut diags = super::calls::check_ground(test);
+    let mut seen_agents: BTreeSet<&str> = BTreeSet::new();
     for a in &test.agents {
         for name in &a.agents {
             let n = name.name.name();
-            if seen_agents.contains(&n) {
+            if !seen_agents.insert(n) {
                 diags.push(
                     Diagnostic::warning(
                         "W0302",
@@ -24,14 +25,12 @@ pub fn check_files(test: &MasTest, base_dir: &Path) -> Vec<Diagnostic> {
                     )
                     .with_hint("put all tests of an agent in one block"),
                 );
-            } else {
-                seen_agents.push(n);
             }
         }
-        let mut seen_tests: Vec<&str> = Vec::new();
+        let mut seen_tests: BTreeSet<&str> = BTreeSet::new();
         for t in &a.tests {
             let n = t.name.name.name();
-            if seen_tests.contains(&n) {
+            if !seen_tests.insert(n) {
                 diags.push(
                     Diagnostic::warning(
                         "W0301",
@@ -41,8 +40,6 @@ pub fn check_files(test: &MasTest, base_dir: &Path) -> Vec<Diagnostic> {
                     )
                     .with_hint("give every test of an agent a different name"),
                 );
-            } else {
-                seen_tests.push(n);
             }
         }
     }

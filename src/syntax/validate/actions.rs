@@ -166,10 +166,12 @@ fn calls(ctx: &mut Ctx<'_>) {
                 ctx.error(
                     "E0105",
                     format!(
-                        "`{}` is called with {} argument(s), but only {} exist(s)",
+                        "`{}` is called with {} argument{}, but only {} {}",
                         key.0,
                         key.1,
-                        list.join(", ")
+                        if key.1 == 1 { "" } else { "s" },
+                        list.join(", "),
+                        if list.len() == 1 { "exists" } else { "exist" }
                     ),
                     a.span.clone(),
                     "pass as many arguments as the action spec or module has parameters",

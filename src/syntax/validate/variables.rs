@@ -131,15 +131,50 @@ fn condition(ctx: &mut Ctx<'_>, lits: &[Literal], bound: &VarSet) -> VarSet {
                     bound.extend(binding_vars(query));
                 }
             }
-            LiteralKind::MacroUse { args, .. } => {
-                for a in args {
-                    bound.extend(var_set(&a.term));
+            LiteralKind::MacroUse { name, args } => {
+                let key = (name.name.name().to_string(), args.len());
+                // A macro binds the arguments whose parameters its body binds; an unknown
+                // macro (imported, or reported as undefined) is assumed to bind them all.
+                let binds = ctx.macro_index.get(&key).and_then(|d| d.first()).map(|m| {
+                    let body = positive_bindings(&m.body);
+                    m.params
+                        .iter()
+                        .map(|p| var_set(&p.term).iter().all(|v| body.contains(v)))
+                        .collect::<Vec<bool>>()
+                });
+                for (i, a) in args.iter().enumerate() {
+                    if binds
+                        .as_ref()
+                        .is_none_or(|b| b.get(i).copied().unwrap_or(true))
+                    {
+                        bound.extend(var_set(&a.term));
+                    }
                 }
             }
             LiteralKind::True => {}
         }
     }
     bound
+}
+
+/// The variables that the positive literals of a macro body bind (nested macros bind their
+/// arguments).
+fn positive_bindings(lits: &[Literal]) -> VarSet {
+    let mut out = VarSet::new();
+    for l in lits {
+        match &l.kind {
+            LiteralKind::Mental {
+                negated: false,
+                query,
+                ..
+            } => out.extend(binding_vars(query)),
+            LiteralKind::MacroUse { args, .. } => {
+                args.iter().for_each(|a| out.extend(var_set(&a.term)))
+            }
+            _ => {}
+        }
+    }
+    out
 }
 
 fn rule(ctx: &mut Ctx<'_>, r: &Rule, outer: &VarSet) {

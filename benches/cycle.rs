@@ -1,0 +1,89 @@
+//! Agent cycle benchmark: cycles per second for a BW4T-like robot agent (40 rules, 200
+//! beliefs, 20 percepts changing per cycle) and for an idle agent. Target: 20,000 cycles/s for
+//! the robot. Run with `cargo bench --bench cycle` (`CYCLE_BENCH_QUICK=1` for a short run).
+
+#[path = "cycle/robot.rs"]
+mod robot;
+
+use goal::agent::{Agent, AgentConfig, Program, TraceLevel};
+use std::time::Instant;
+
+fn agent(src: &str, trace: TraceLevel) -> Agent {
+    let p = match Program::from_source("bench.goal", src) {
+        Ok(p) => p,
+        Err(d) => panic!("{}", d.iter().map(|x| x.render(src)).collect::<String>()),
+    };
+    let cfg = AgentConfig {
+        seed: 1,
+        trace,
+        ..AgentConfig::default()
+    };
+    Agent::new(p, "robot", cfg)
+}
+
+fn measure(src: &str, with_percepts: bool, trace: TraceLevel, cycles: u64) -> (f64, usize) {
+    let mut a = agent(src, trace);
+    let batches: Vec<_> = (0..64).map(robot::percepts).collect();
+    let mut actions = 0;
+    // Warm up.
+    for n in 0..100u64 {
+        let p = if with_percepts {
+            &batches[(n % 64) as usize][..]
+        } else {
+            &[]
+        };
+        a.step(p, &[]);
+    }
+    let start = Instant::now();
+    for n in 0..cycles {
+        let p = if with_percepts {
+            &batches[(n % 64) as usize][..]
+        } else {
+            &[]
+        };
+        let out = a.step(p, &[]);
+        actions += out.env_actions.len();
+        assert!(out.stopped.is_none(), "agent stopped: {:?}", out.stopped);
+    }
+    let secs = start.elapsed().as_secs_f64();
+    (cycles as f64 / secs, actions)
+}
+
+fn main() {
+    let quick = std::env::var("CYCLE_BENCH_QUICK").is_ok();
+    let n = if quick { 500 } else { 20_000 };
+    let robot = robot::robot_program();
+    let idle = robot::idle_program();
+    println!(
+        "{:<42} {:>14} {:>10} {:>8}",
+        "case", "cycles/s", "target", "ratio"
+    );
+    let rows = [
+        (
+            "robot (40 rules, 200 beliefs, 20 percepts)",
+            &robot,
+            true,
+            TraceLevel::Off,
+            20_000.0,
+        ),
+        (
+            "robot, full trace",
+            &robot,
+            true,
+            TraceLevel::Rules,
+            20_000.0,
+        ),
+        ("idle agent", &idle, false, TraceLevel::Off, 20_000.0),
+    ];
+    for (name, src, percepts, trace, target) in rows {
+        let (cps, actions) = measure(src, percepts, trace, n);
+        println!(
+            "{:<42} {:>14.0} {:>10.0} {:>7.2}x   ({} env actions)",
+            name,
+            cps,
+            target,
+            cps / target,
+            actions
+        );
+    }
+}
