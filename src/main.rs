@@ -21,6 +21,8 @@ enum Command {
     Run(cli::run::Args),
     /// Load Prolog files and print the answers of a query (or read queries from standard input).
     Prolog(cli::prolog::Args),
+    /// Run a benchmark (token rings, reasoning, percept load, idle agents) and print its figures.
+    Bench(cli::bench::Args),
 }
 
 fn main() -> ExitCode {
@@ -29,5 +31,6 @@ fn main() -> ExitCode {
         Command::Check(args) => cli::check::main(args),
         Command::Run(args) => cli::run::main(args),
         Command::Prolog(args) => cli::prolog::main(args),
+        Command::Bench(args) => cli::bench::main(args),
     }
 }

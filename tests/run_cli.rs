@@ -51,7 +51,10 @@ fn no_arguments_runs_the_built_in_team_from_an_empty_directory() {
     for bot in ["Bot1", "Bot2", "Bot3"] {
         let a = &stats["agents"][bot];
         assert!(a["cycles"].as_u64().is_some_and(|c| c > 0), "{bot}: {a}");
-        assert!(a["actions"].is_u64() && a["idle_ticks"].is_u64(), "{bot}: {a}");
+        assert!(
+            a["actions"].is_u64() && a["idle_ticks"].is_u64(),
+            "{bot}: {a}"
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -115,7 +118,9 @@ fn a_failing_agent_is_in_the_summary() {
             .any(|l| l.starts_with("crasher") && l.contains("error:") && l.contains("1/0")),
         "{err}"
     );
-    assert!(err.lines().any(|l| l.starts_with("worker1") && l.ends_with("stopped")));
+    assert!(err
+        .lines()
+        .any(|l| l.starts_with("worker1") && l.ends_with("stopped")));
     // Both workers print 1..20; crasher prints nothing.
     assert_eq!(text(&out.stdout).lines().count(), 40);
 }

@@ -1,6 +1,7 @@
 //! The mental state of one agent: shared knowledge, beliefs, goals (attention stack), typed
 //! percepts, mailbox and the `agent/1`, `me/1` facts; with the queries and updates on them.
 
+use super::directory::Directory;
 use super::error::Fault;
 use super::goals::{AttentionStack, Goal, GoalBase};
 use super::kr_bridge::{Engine, FactBase, Knowledge, KrError, Limits, NativeEngine, View};
@@ -18,8 +19,10 @@ pub struct MentalState {
     pub beliefs: FactBase,
     pub percepts: PerceptBase,
     pub mailbox: Mailbox,
-    /// `agent(A)` for every known agent and `me(Self)`.
-    pub agents: FactBase,
+    /// `agent(A)` for every known agent (shared by the agents of a system).
+    pub agents: Arc<Directory>,
+    /// `me(Self)`.
+    pub me: FactBase,
     pub attention: AttentionStack,
     /// The KR engine (limits, its own seeded RNG and output buffer); interior mutability lets
     /// queries run while conditions hold a shared borrow of the state.
@@ -35,26 +38,24 @@ pub struct UpdateEffect {
 }
 
 impl MentalState {
-    /// An empty mental state for agent `me` knowing `agents`.
+    /// An empty mental state for agent `me` knowing the agents of `agents` (which includes
+    /// `me`).
     pub fn new(
         knowledge: Arc<Knowledge>,
         me: &Term,
-        agents: &[Term],
+        agents: Arc<Directory>,
         limits: Limits,
         seed: u64,
     ) -> Self {
         let mut facts = FactBase::new();
-        for a in agents {
-            facts.insert(Term::compound(wk::AGENT, vec![a.clone()]));
-        }
-        facts.insert(Term::compound(wk::AGENT, vec![me.clone()]));
         facts.insert(Term::compound(wk::ME, vec![me.clone()]));
         MentalState {
             knowledge,
             beliefs: FactBase::new(),
             percepts: PerceptBase::default(),
             mailbox: Mailbox::default(),
-            agents: facts,
+            agents,
+            me: facts,
             attention: AttentionStack::default(),
             engine: RefCell::new(NativeEngine::new(seed).with_limits(limits)),
             record: true,
@@ -97,12 +98,13 @@ impl MentalState {
         Ok(false)
     }
 
-    fn bases(&self) -> [&FactBase; 5] {
+    fn bases(&self) -> [&FactBase; 6] {
         [
             &self.beliefs,
             self.percepts.facts(),
             self.mailbox.facts(),
-            &self.agents,
+            self.agents.facts(),
+            &self.me,
             self.percepts.batch(),
         ]
     }

@@ -25,10 +25,14 @@ impl Core {
     fn receivers(&self, to: &Receivers, s: &Subst) -> Result<Vec<String>, Fault> {
         let mut names = Vec::new();
         match to {
-            Receivers::All => names.extend(self.known.iter().cloned()),
-            Receivers::AllOther => {
-                names.extend(self.known.iter().filter(|n| **n != self.name).cloned())
-            }
+            Receivers::All => names.extend(self.known.names().iter().cloned()),
+            Receivers::AllOther => names.extend(
+                self.known
+                    .names()
+                    .iter()
+                    .filter(|n| **n != self.name)
+                    .cloned(),
+            ),
             Receivers::SelfAgent => names.push(self.name.clone()),
             Receivers::Agents(ts) => {
                 let mut work: Vec<Term> = ts.iter().rev().map(|t| s.apply(t)).collect();

@@ -9,6 +9,7 @@ pub mod action;
 mod compile;
 pub mod condition;
 pub mod cycle;
+pub mod directory;
 pub mod error;
 pub mod goals;
 pub mod kr_bridge;
@@ -22,6 +23,7 @@ pub mod rule;
 pub mod trace;
 
 pub use cycle::{Agent, AgentConfig, CycleOutput, StopReason};
+pub use directory::Directory;
 pub use error::RuntimeError;
 pub use mailbox::Message;
 pub use percepts::{PerceptType, PerceptTypes};

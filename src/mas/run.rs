@@ -10,7 +10,8 @@ use super::stats::{AgentStats, Deliveries, EndReason, RunSummary};
 use super::system::{MasSystem, Problem};
 use super::trace::{AgentInfo, TraceWriter};
 use crate::agent::{
-    Agent, AgentConfig, Event, Message, PerceptType, PerceptTypes, StopReason, TraceLevel,
+    Agent, AgentConfig, Directory, Event, Message, PerceptType, PerceptTypes, StopReason,
+    TraceLevel,
 };
 use crate::bw4t::Bw4t;
 use crate::diag::Diagnostic;
@@ -83,6 +84,9 @@ pub trait Observer {
     }
     /// Progress, every few rounds.
     fn progress(&mut self, _p: &Progress) {}
+    /// Every agent is created and the first round is about to start (benchmarks time the
+    /// creation apart from the run).
+    fn started(&mut self, _agents: usize, _workers: usize) {}
 }
 
 /// An observer that ignores everything.
@@ -238,6 +242,7 @@ impl<'a> Setup<'a> {
         }
         let names: Vec<String> = launches.iter().map(|l| l.name.clone()).collect();
         let types = Arc::new(info.as_ref().map(percept_types).unwrap_or_default());
+        let directory = Directory::new(&names);
         let mut agents = Vec::new();
         let mut slots = Vec::new();
         let mut by_entity: BTreeMap<String, Vec<usize>> = BTreeMap::new();
@@ -250,7 +255,7 @@ impl<'a> Setup<'a> {
             })?;
             let config = AgentConfig {
                 seed: agent_seed(seed, &l.name),
-                agents: names.clone(),
+                directory: Some(directory.clone()),
                 percept_types: types.clone(),
                 trace: if opts.trace_rules {
                     TraceLevel::Rules
@@ -343,6 +348,7 @@ impl<'a> Setup<'a> {
         }
         let initial = std::mem::take(&mut self.initial);
         self.deliver_percepts(initial);
+        obs.started(self.slots.len(), self.pool.workers());
         let start = Instant::now();
         let mut round: u64 = 0;
         let mut tick: u64 = 0;
