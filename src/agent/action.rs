@@ -86,14 +86,14 @@ impl Core {
             self.event(Event::ActionPerformed {
                 action: action().to_string(),
             });
+        } else {
+            self.out.actions += 1;
         }
     }
 
     /// Records an `ActionPerformed` event.
     pub fn done(&mut self, action: &Term) -> Result<(), Fault> {
-        self.changes(vec![Event::ActionPerformed {
-            action: action.to_string(),
-        }]);
+        self.done_with(|| action.clone());
         Ok(())
     }
 
@@ -202,9 +202,11 @@ impl Core {
         let inst = full.apply(&head);
         if spec.env {
             self.out.env_actions.push(inst.clone());
-            self.changes(vec![Event::EnvAction {
-                action: inst.to_string(),
-            }]);
+            if self.level >= TraceLevel::Changes {
+                self.event(Event::EnvAction {
+                    action: inst.to_string(),
+                });
+            }
         }
         let post = full.apply(&spec.post);
         if !post.is_ground() {

@@ -38,6 +38,8 @@ pub struct CycleOutput {
     pub printed: Vec<String>,
     /// Set when the agent stopped (in this or an earlier cycle).
     pub stopped: Option<StopReason>,
+    /// Real actions performed (counted at every trace level).
+    pub actions: u64,
 }
 
 /// How to create an agent.
@@ -97,6 +99,9 @@ impl Core {
             Event::RuleEvaluated { .. } | Event::RuleFired { .. } => TraceLevel::Rules,
             _ => TraceLevel::Changes,
         };
+        if matches!(e, Event::ActionPerformed { .. }) {
+            self.out.actions += 1;
+        }
         if self.level >= need {
             self.out.events.push(e);
         }

@@ -100,7 +100,13 @@ pub fn run(
     trace: Option<TraceWriter>,
     obs: &mut dyn Observer,
 ) -> Result<(RunSummary, Option<String>), Vec<Problem>> {
-    let mut setup = Setup::new(system, opts, obs)?;
+    // Without a trace nobody reads the events: the agents then skip building them.
+    let level = match (&trace, opts.trace_rules) {
+        (None, _) => TraceLevel::Off,
+        (Some(_), true) => TraceLevel::Rules,
+        (Some(_), false) => TraceLevel::Changes,
+    };
+    let mut setup = Setup::new(system, opts, level, obs)?;
     let summary = setup.run_loop(trace, obs);
     Ok(summary)
 }
@@ -205,6 +211,7 @@ impl<'a> Setup<'a> {
     fn new(
         system: &'a MasSystem,
         opts: &'a RunOptions,
+        level: TraceLevel,
         obs: &mut dyn Observer,
     ) -> Result<Setup<'a>, Vec<Problem>> {
         let mut launcher = Launcher::new(&system.rules);
@@ -257,11 +264,7 @@ impl<'a> Setup<'a> {
                 seed: agent_seed(seed, &l.name),
                 directory: Some(directory.clone()),
                 percept_types: types.clone(),
-                trace: if opts.trace_rules {
-                    TraceLevel::Rules
-                } else {
-                    TraceLevel::Changes
-                },
+                trace: level,
                 ..AgentConfig::default()
             };
             agents.push(Agent::new(prog.clone(), &l.name, config));
@@ -398,11 +401,7 @@ impl<'a> Setup<'a> {
             for (i, out) in outputs {
                 let s = &mut self.slots[i];
                 s.stats.cycles += 1;
-                let performed = out
-                    .events
-                    .iter()
-                    .filter(|e| matches!(e, Event::ActionPerformed { .. }))
-                    .count() as u64;
+                let performed = out.actions;
                 s.stats.actions += performed;
                 s.acted = performed > 0 || !out.env_actions.is_empty() || !out.messages.is_empty();
                 let idle = !fresh[i] && !s.acted && out.printed.is_empty() && out.stopped.is_none();
