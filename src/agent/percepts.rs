@@ -4,7 +4,7 @@
 use super::kr_bridge::FactBase;
 use crate::term::{well_known as wk, Sym, Term};
 use serde::Serialize;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap, HashSet};
 
 /// How the environment sends a percept (and so how long the agent keeps it).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -103,20 +103,28 @@ impl PerceptBase {
             }
         }
         // Predicates whose facts this batch replaces: all `Always` ones, and `OnChange` ones
-        // mentioned in the batch.
-        let mentioned: Vec<(Sym, usize)> = positive.iter().filter_map(|p| p.functor()).collect();
+        // mentioned in the batch. Sets and a per-predicate type cache keep this linear in the
+        // batch and base sizes (a 5,000-percept batch is common in load tests).
+        let mentioned: HashSet<(Sym, usize)> =
+            positive.iter().filter_map(|p| p.functor()).collect();
+        let keep: HashSet<&Term> = positive.iter().copied().collect();
+        let mut kinds: HashMap<(Sym, usize), PerceptType> = HashMap::new();
         let stale: Vec<Term> = self
             .facts
             .iter()
             .filter(|f| {
                 let p = &f.args()[0];
-                match types.of(p) {
+                let kind = match p.functor() {
+                    Some(k) => *kinds.entry(k).or_insert_with(|| types.of(p)),
+                    None => types.of(p),
+                };
+                match kind {
                     PerceptType::Always => true,
                     PerceptType::OnChange => p.functor().is_some_and(|k| mentioned.contains(&k)),
                     _ => false,
                 }
             })
-            .filter(|f| !positive.contains(&&f.args()[0]))
+            .filter(|f| !keep.contains(&f.args()[0]))
             .cloned()
             .collect();
         for f in stale {
