@@ -78,12 +78,18 @@ impl MentalState {
 
     /// All answers of `q` against one goal's facts plus knowledge.
     pub fn in_goal(&self, g: &Goal, q: &Term) -> Result<Vec<Subst>, Fault> {
+        if let Some(answers) = goal_facts_only(&self.knowledge, g, q) {
+            return Ok(answers);
+        }
         let view = View::goal(&self.knowledge, &g.facts);
         self.run(|e| e.query(&view, q), q)
     }
 
     /// True when one goal's facts plus knowledge entail `q`.
     pub fn goal_holds(&self, g: &Goal, q: &Term) -> Result<bool, Fault> {
+        if let Some(answers) = goal_facts_only(&self.knowledge, g, q) {
+            return Ok(!answers.is_empty());
+        }
         let view = View::goal(&self.knowledge, &g.facts);
         self.run(|e| e.holds(&view, q), q)
     }
@@ -240,4 +246,38 @@ impl MentalState {
         }
         Ok(())
     }
+}
+
+/// The answers of a one-literal query over a goal's facts by plain unification, when the goal
+/// has facts of the query's predicate and knowledge does not define it (then the engine would
+/// only match those facts too). `a-goal` conditions query every goal of the attention set, so
+/// skipping the engine here matters for agents with many goals. `None`: ask the engine.
+fn goal_facts_only(knowledge: &Knowledge, g: &Goal, q: &Term) -> Option<Vec<Subst>> {
+    let key = q.functor()?;
+    if !g.facts.iter().any(|f| f.functor() == Some(key)) || knowledge.defines(key.0, key.1) {
+        return None;
+    }
+    // Answers bind the query's variables in reading order, as the engine's answers do.
+    let vars: Vec<_> = q
+        .vars()
+        .into_iter()
+        .filter(|v| *v != wk::UNDERSCORE)
+        .collect();
+    let mut out: Vec<Subst> = Vec::new();
+    for f in g.facts.iter().filter(|f| f.functor() == Some(key)) {
+        let mut s = Subst::new();
+        if s.unify(q, f, false) {
+            let mut a = Subst::new();
+            for v in &vars {
+                let t = s.apply(&Term::Var(*v));
+                if t != Term::Var(*v) {
+                    a.bind(*v, t);
+                }
+            }
+            if !out.contains(&a) {
+                out.push(a);
+            }
+        }
+    }
+    Some(out)
 }
