@@ -64,6 +64,9 @@ impl MentalState {
 
     /// All answers of `q` against the belief base (knowledge, beliefs, percepts, mail, agents).
     pub fn bel(&self, q: &Term) -> Result<Vec<Subst>, Fault> {
+        if self.cannot_hold(q) {
+            return Ok(Vec::new());
+        }
         let bases = self.bases();
         let view = View::beliefs(&self.knowledge, &bases);
         self.run(|e| e.query(&view, q), q)
@@ -71,6 +74,9 @@ impl MentalState {
 
     /// True when `q` has an answer in the belief base.
     pub fn believes(&self, q: &Term) -> Result<bool, Fault> {
+        if self.cannot_hold(q) {
+            return Ok(false);
+        }
         let bases = self.bases();
         let view = View::beliefs(&self.knowledge, &bases);
         self.run(|e| e.holds(&view, q), q)
@@ -102,6 +108,22 @@ impl MentalState {
             }
         }
         Ok(false)
+    }
+
+    /// True when the first goal of conjunction `q` can only match facts (no built-in, control
+    /// construct or knowledge rule answers to it) and no base has a fact of its predicate: then
+    /// `q` has no answer. Skips the engine for the common rule whose first literal looks for
+    /// something absent, e.g. `received(S, M)` with an empty mailbox.
+    fn cannot_hold(&self, q: &Term) -> bool {
+        let mut first = q;
+        while first.is_functor(wk::COMMA, 2) {
+            first = &first.args()[0];
+        }
+        let Some((name, arity)) = first.functor() else {
+            return false;
+        };
+        !self.knowledge.resolves(name, arity)
+            && !self.bases().iter().any(|b| b.has_predicate(name, arity))
     }
 
     fn bases(&self) -> [&FactBase; 6] {
