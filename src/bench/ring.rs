@@ -90,7 +90,7 @@ pub fn run(name: &str, params: &Params, workers: usize, tokens: u64) -> Result<R
     let hop_messages = summary.messages.saturating_sub(tokens);
     let done_line = format!("all_arrived({tokens})");
     let mut failure = None;
-    if !watch.printed.iter().any(|l| *l == done_line) {
+    if !watch.printed.contains(&done_line) {
         failure = Some(format!("the counter did not print {done_line}"));
     } else if hop_messages != expected {
         failure = Some(format!("{hop_messages} hops instead of {expected}"));

@@ -54,7 +54,7 @@ pub fn main(args: Args) -> ExitCode {
             }
         }
         let failed = reports.iter().filter(|r| !r.ok()).count();
-        reports.sort_by(|a, b| a.run.cmp(&b.run));
+        reports.sort_by_key(|r| r.run);
         let median = &reports[reports.len() / 2];
         print!("{}", median.render());
         if reports.len() > 1 {
