@@ -739,3 +739,16 @@ fn exit_module_in_a_called_module_ends_only_that_module() {
     assert_eq!(a.step(&[], &[]).printed, ["back"]);
     assert!(a.stopped().is_none());
 }
+
+#[test]
+fn bel_conjunctions_with_negation_keep_prolog_answers_and_order() {
+    let mut a = agent(
+        "init module { knowledge { odd(X) :- 1 is X mod 2. }
+                       beliefs { p(4). p(1). p(3). p(2). q(2). r(3, a). s(1, b). s(4, c). } }
+         event module { program {
+            forall bel(p(X), not(q(X)), \\+ r(X, _), s(X, Y), not(odd(X))) do print(X/Y).
+            forall bel(p(X), !, not(q(X))) do print(cut(X)). } }
+         main module { program { if true then exit-module. } }",
+    );
+    assert_eq!(step(&mut a, &["tick"], &[]).printed, ["4/c", "cut(4)"]);
+}

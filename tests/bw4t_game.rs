@@ -39,7 +39,7 @@ fn init_parameters_configure_a_run_and_bad_ones_are_diagnostics() {
     params.insert("robots".into(), Term::Int(2));
     params.insert("gripperCapacity".into(), Term::Int(2));
     params.insert("colorblind".into(), Term::list(vec![Term::atom("Bot2")]));
-    let mut bw = Bw4t::from_params(&params).unwrap();
+    let mut bw = <Bw4t as goal::env::FromInitParams>::from_init_params(&params).unwrap();
     assert_eq!(bw.entities().len(), 2);
     assert!(has(&bw.percepts("Bot2"), "colorblind(true)"));
     assert!(has(&bw.percepts("Bot1"), "gripperCapacity(2)"));
@@ -157,4 +157,51 @@ fn a_stopped_environment_answers_with_errors_not_panics() {
     };
     assert!(matches!(rx.recv().unwrap(), Err(EnvError::WrongMode(_))));
     handle.stop();
+}
+
+#[test]
+fn odd_actions_and_unchecked_maps_never_panic() {
+    let mut bw = default_env("banana");
+    let odd = [
+        Term::compound("goTo", vec![Term::from(1.0e308), Term::from(-1.0e308)]),
+        Term::compound("goTo", vec![Term::from(f64::NAN), Term::Int(3)]),
+        Term::compound("goTo", vec![Term::Int(i64::MAX), Term::Int(i64::MIN)]),
+        Term::compound("pickUp", vec![Term::Int(-1)]),
+        Term::compound("goToBlock", vec![Term::from(1.5)]),
+        Term::compound("sendMessage", vec![Term::Int(1), Term::Int(2)]),
+        Term::compound("goTo", vec![Term::var("X")]),
+        Term::string("goTo"),
+        Term::Int(7),
+        Term::var("A"),
+    ];
+    for a in &odd {
+        let r = bw.perform("Bot1", a);
+        assert!(matches!(r, ActionResult::Failed(_)), "{a}: {r:?}");
+        for _ in 0..20 {
+            bw.tick();
+        }
+        let _ = bw.percepts("Bot1");
+    }
+    let p = bw.world().robots[0].pos;
+    assert_eq!((p.x, p.y), (25.0, 65.0));
+    let empty = map::Map {
+        name: "empty".into(),
+        width: 10.0,
+        height: 10.0,
+        one_bot_per_corridor_zone: false,
+        random_blocks: 3,
+        random_sequence: 2,
+        seed: None,
+        sequence: vec!["Red".into()],
+        spawns: vec![[1.0, 1.0]],
+        zones: Vec::new(),
+    };
+    assert!(map::from_toml(&map::to_toml(&empty), "empty.toml").is_err());
+    let mut bw = Bw4t::new(&empty, &Bw4tConfig::default());
+    for a in odd.iter().chain([go_to("DropZone"), put_down()].iter()) {
+        let _ = bw.perform("Bot1", a);
+        bw.tick();
+        let _ = bw.percepts("Bot1");
+    }
+    assert!(!bw.is_finished());
 }

@@ -331,3 +331,49 @@ fn importer_reports_broken_xml() {
         "{e:?}"
     );
 }
+
+#[test]
+fn charging_zones_and_blockades_of_the_rainbow_variant() {
+    let Some(dir) = shared_maps() else { return };
+    let text = std::fs::read_to_string(dir.join("rainbow-charging-blockade.xml")).unwrap();
+    // Repair the two dangling references (in memory) by pointing them at the blockade.
+    let fixed = text.replace(
+        "<neighbours>RightHallA</neighbours>",
+        "<neighbours>BlockadeA</neighbours>",
+    );
+    let m = xml::import(&fixed, "repaired.xml").expect("repaired map imports");
+    let kind = |n: &str| m.zones.iter().find(|z| z.name == n).map(|z| z.kind);
+    assert_eq!(kind("LeftHallA"), Some(ZoneKind::Charging));
+    assert_eq!(kind("BlockadeA"), Some(ZoneKind::Blockade));
+    let cfg = Bw4tConfig {
+        robots: Some(2),
+        robot: goal::bw4t::RobotConfig {
+            battery: Some(10.0),
+            ..Default::default()
+        },
+        ..Bw4tConfig::default()
+    };
+    let mut bw = goal::bw4t::Bw4t::new(&m, &cfg);
+    // The shortest route to RoomA3 runs through the blockade, which cannot be entered.
+    assert_eq!(
+        bw.world().route("FrontDropZone", "RoomA3").unwrap(),
+        [
+            "FrontDropZone",
+            "RightHallD",
+            "RightHallC",
+            "RightHallB",
+            "BlockadeA",
+            "FrontRoomA3",
+            "RoomA3"
+        ]
+    );
+    ok(&mut bw, "Bot1", go_to("RoomA3"));
+    run_until_stopped(&mut bw, "Bot1", 2000);
+    assert_eq!(state(&bw, "Bot1"), goal::bw4t::RobotState::Collided);
+    assert_eq!(bw.world().robots[0].collision, Some("hit wall"));
+    assert_eq!(at(&bw, "Bot1"), "RightHallB");
+    // The route to RoomA1 passes the charging zone: the battery is refilled on the way.
+    travel(&mut bw, "Bot2", "RoomA1");
+    let pct = bw.world().robots[1].battery_percent();
+    assert!(pct > 80.0 && pct < 100.0, "{pct}");
+}

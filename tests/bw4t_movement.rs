@@ -172,7 +172,7 @@ fn movement_actions_fail_visibly_on_bad_input() {
     assert!(fail(bw.perform("Bot9", &go_to("DropZone"))).contains("unknown entity"));
     assert!(
         fail(bw.perform("Bot1", &goal::term::Term::atom("navigateObstacles")))
-            .contains("not available")
+            .contains("interrupted by a collision")
     );
     // A point outside every zone is still reachable through free space.
     ok(&mut bw, "Bot1", go_to_xy(2.0, 57.0));

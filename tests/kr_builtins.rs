@@ -1,7 +1,7 @@
 //! Unit tests of the native KR engine's built-ins and control constructs (error cases too),
 //! written as Prolog text read with the project's reader.
 
-use goal::kr::{Engine, FactBase, Knowledge, KrError, Limits, NativeEngine, View};
+use goal::kr::{Engine, FactBase, Knowledge, Limits, NativeEngine, View};
 use goal::syntax::prolog::Reader;
 use goal::term::Term;
 
@@ -276,6 +276,13 @@ fn lists() {
     assert_eq!(one("append([[1], [2, 3], []], L)"), "L = [1,2,3]");
     assert_eq!(one("length([a, b], N)"), "N = 2");
     assert_eq!(one("length(L, 2)"), "L = [_R0,_R1]");
+    assert_eq!(one("length([a|T], 3)"), "T = [_R0,_R1]");
+    assert_eq!(
+        ask("", "length([a|T], N), N > 2, !"),
+        ["T = [_R0,_R1], N = 3"]
+    );
+    assert_eq!(one("length(L, -1)"), "false");
+    assert_eq!(one("length(a, N)"), "false");
     assert_eq!(ask("", "length(L, N), N >= 2, !"), ["L = [_R0,_R1], N = 2"]);
     assert_eq!(
         one("nth0(1, [a, b, c], X), nth1(1, [a, b, c], Y)"),
@@ -497,4 +504,118 @@ fn between_and_misc() {
     assert_eq!(one("call(X)"), "error: error(instantiation_error,_)");
     assert_eq!(one("call(1)"), "error: error(type_error(callable,1),_)");
     assert_eq!(ask("", "X = 1 ; X = 2"), ["X = 1", "X = 2"]);
+}
+
+#[test]
+fn iso_errors_for_bad_lists() {
+    assert_eq!(
+        one("atom_chars(X, [ab])"),
+        "error: error(type_error(character,ab),atom_chars/2)"
+    );
+    assert_eq!(
+        one("atom_codes(X, [0'a|_])"),
+        "error: error(instantiation_error,atom_codes/2)"
+    );
+    assert_eq!(
+        one("atom_codes(X, [f(x)])"),
+        "error: error(type_error(integer,f(x)),atom_codes/2)"
+    );
+    assert_eq!(
+        one("findall(X, member(X, [1]), 9)"),
+        "error: error(type_error(list,9),findall/3)"
+    );
+    assert_eq!(
+        one("aggregate_all(bag(X), fail, 9)"),
+        "error: error(type_error(list,9),findall/3)"
+    );
+    assert_eq!(
+        one("findall(X, member(X, [1, 2]), [A|T])"),
+        "A = 1, T = [2]"
+    );
+}
+
+#[test]
+fn printing_deep_terms_is_an_error_not_a_crash() {
+    let p = "wrap(0, T, T) :- !. wrap(N, T0, T) :- N1 is N - 1, wrap(N1, f(T0), T).";
+    assert_eq!(
+        ask(p, "wrap(20000, z, T), format(atom(A), \"~w\", [T])"),
+        ["error: error(resource_error(print_depth),_)"]
+    );
+    // Long lists are not deep: they print.
+    assert_eq!(
+        ask(
+            p,
+            "\\+ \\+ (numlist(1, 20000, L), format(atom(A), \"~w\", [L]), atom_length(A, 108895))"
+        ),
+        ["true"]
+    );
+}
+
+#[test]
+fn cyclic_terms_give_errors_not_hangs() {
+    assert_eq!(
+        one("X = f(X)"),
+        "error: error(representation_error(cyclic_term),_)"
+    );
+    assert_eq!(
+        one("X = f(X), format(atom(_), \"~w\", [X])"),
+        "error: error(representation_error(cyclic_term),_)"
+    );
+    assert_eq!(one("\\+ \\+ X = f(X)"), "true");
+}
+
+#[test]
+fn cyclic_terms_in_unification_and_comparison_stop() {
+    for q in [
+        "X = f(X), Y = f(Y), X = Y",
+        "X = f(X), Y = f(Y), X == Y",
+        "X = f(X), copy_term(X, Y)",
+        "X = f(X), ground(X)",
+        "X = f(X, Z), term_variables(X, L)",
+        "X = f(X), findall(X, true, L)",
+        "X = f(X), Y = f(Y), compare(O, X, Y)",
+    ] {
+        assert_eq!(
+            one(q),
+            "error: error(representation_error(cyclic_term),_)",
+            "{q}"
+        );
+    }
+}
+
+#[test]
+fn hostile_arguments_are_errors_or_bounded() {
+    assert_eq!(
+        one("sort(-1, @<, [f(a)], X)"),
+        "error: error(domain_error(not_less_than_zero,-1),sort/4)"
+    );
+    assert_eq!(
+        one("format(atom(A), \"~999999999999|x\", []), atom_length(A, N)"),
+        "A = '".to_string() + &" ".repeat(100_000) + "x', N = 100001"
+    );
+    assert_eq!(
+        one("length(L, 1000000000000)"),
+        "error: error(domain_error(list_length,1000000000000),length/2)"
+    );
+    assert_eq!(
+        one("functor(T, f, 100000000)"),
+        "error: error(resource_error(memory),functor/3)"
+    );
+    assert_eq!(
+        one("X is 2 ** 100"),
+        "error: error(evaluation_error(int_overflow),_)"
+    );
+    assert_eq!(
+        one("X is 1 << 64"),
+        "error: error(evaluation_error(int_overflow),_)"
+    );
+    assert_eq!(
+        one("X is random(0)"),
+        "error: error(evaluation_error(undefined),_)"
+    );
+    assert_eq!(
+        one("atom_length(A, B)"),
+        "error: error(instantiation_error,atom_length/2)"
+    );
+    assert_eq!(one("sub_atom(abc, B, L, A, S), fail"), "false");
 }

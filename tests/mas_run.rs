@@ -265,3 +265,30 @@ fn cycle_limit_stops_a_single_agent() {
     assert_eq!(s.ticks, 10);
     assert_eq!(obs.printed.len(), 10);
 }
+
+#[test]
+fn summary_table_of_a_failing_system() {
+    let (s, _, _) = run_file("failing.mas2g", &opts(3, 1000));
+    let root = env!("CARGO_MANIFEST_DIR");
+    let table = goal::mas::summary::table(&s).replace(root, "<root>");
+    insta::assert_snapshot!(table);
+}
+
+#[test]
+fn copies_get_numbered_names_and_every_agent_knows_all_agents() {
+    let (s, _, obs) = run_file("whoami.mas2g", &opts(2, 100));
+    let names: Vec<&String> = s.agents.keys().collect();
+    assert_eq!(names, ["who1", "who2", "who3", "whoami"]);
+    let mut got: Vec<String> = obs.printed.iter().map(|(_, l)| l.clone()).collect();
+    got.sort();
+    let all = "[who1,who2,who3,whoami]";
+    assert_eq!(
+        got,
+        [
+            format!("who1-{all}"),
+            format!("who2-{all}"),
+            format!("who3-{all}"),
+            format!("whoami-{all}"),
+        ]
+    );
+}

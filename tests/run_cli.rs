@@ -137,3 +137,35 @@ fn a_bad_file_is_a_diagnostic_not_a_crash() {
     assert!(text(&out.stderr).contains("missing.mas2g"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn map_and_robots_options_replace_the_defaults() {
+    let dir = temp_dir("map");
+    let out = goal(
+        &dir,
+        &[
+            "--map",
+            "tiny",
+            "--robots",
+            "2",
+            "--max-ticks",
+            "10",
+            "--stats",
+            "s.json",
+        ],
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("s.json")).expect("stats"))
+            .expect("JSON");
+    assert_eq!(stats["map"], "tiny");
+    let agents: Vec<&String> = stats["agents"]
+        .as_object()
+        .map(|o| o.keys().collect())
+        .unwrap_or_default();
+    assert_eq!(agents, ["Bot1", "Bot2"]);
+    let out = goal(&dir, &["--map", "no-such-map", "--max-ticks", "10"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(text(&out.stderr).contains("no-such-map"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

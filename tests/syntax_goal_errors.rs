@@ -80,3 +80,18 @@ fn deep_nesting_of_blocks_and_terms_is_a_diagnostic_not_a_crash() {
         assert!(d.span.end <= terms.len());
     }
 }
+
+#[test]
+fn a_missing_dot_loses_only_its_own_rule() {
+    let src = "main module {\n program {\n  if bel(p) then a\n  if bel(q) then b.\n  forall bel(r) do c.\n }\n}\n";
+    let (program, diags) = parse_goal("m.goal", src);
+    let errors: Vec<(usize, usize)> = diags
+        .iter()
+        .filter(|d| d.is_error())
+        .map(|d| d.line_col(src))
+        .collect();
+    assert_eq!(errors, vec![(4, 3)], "{diags:#?}");
+    let rules = &program.modules[0].program.as_ref().expect("program").rules;
+    assert_eq!(rules.len(), 2);
+    assert_eq!(rules[0].span.start, src.find("if bel(q)").expect("rule"));
+}

@@ -1,4 +1,4 @@
-//! Property test: mutants of the corpus (deleted, inserted, duplicated and swapped byte ranges and
+//! Property test: random token sequences and mutants of the corpus (deleted, inserted, duplicated and swapped byte ranges and
 //! tokens; seeded ChaCha) never panic, and every diagnostic has a span inside the file.
 
 use goal::syntax::goal::{parse_goal, parse_mod2g};
@@ -160,7 +160,20 @@ fn mutated_corpus_never_panics_and_spans_stay_in_the_file() {
             let end = (start + rng.gen_range(1..400)).min(text.len());
             &text[start..end]
         };
-        let mutant = mutate(&mut rng, piece);
+        // One input in ten is a random sequence of tokens instead of a mutant.
+        let mutant = if rng.gen_ratio(1, 10) {
+            let n = rng.gen_range(1..80);
+            let mut v = Vec::new();
+            for _ in 0..n {
+                v.extend_from_slice(TOKENS[rng.gen_range(0..TOKENS.len())].as_bytes());
+                if rng.gen_bool(0.5) {
+                    v.push(b' ');
+                }
+            }
+            v
+        } else {
+            mutate(&mut rng, piece)
+        };
         let src = String::from_utf8_lossy(&mutant);
         let result = std::panic::catch_unwind(|| check(file, &src));
         if result.is_err() {

@@ -257,3 +257,24 @@ fn macros_bind_only_what_their_bodies_bind() {
     let c = codes(&src).join(" ");
     assert!(c.contains("E0113 5:23"), "{c}");
 }
+
+#[test]
+fn module_files_get_the_checks_that_need_no_importing_program() {
+    let src = "module m(a) {\n  program { if bel(p) then insert(q(Z)) + go. }\n}\n";
+    let (module, parse) = goal::syntax::goal::parse_mod2g("m.mod2g", src);
+    assert!(parse.iter().all(|d| !d.is_error()), "{parse:?}");
+    let module = module.expect("one module");
+    let diags = goal::syntax::validate::validate_module_file(&module, "m.mod2g", None);
+    let found: Vec<(String, (usize, usize))> = diags
+        .iter()
+        .map(|d| (d.code.clone(), d.line_col(src)))
+        .collect();
+    // `p`, `go` and a main module may be defined by the importing program: not reported.
+    assert_eq!(
+        found,
+        vec![
+            ("E0108".to_string(), (1, 10)),
+            ("E0113".to_string(), (2, 37))
+        ]
+    );
+}

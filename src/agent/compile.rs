@@ -212,6 +212,7 @@ impl Compiler<'_> {
             main,
             event,
             warnings: self.warnings,
+            uses_newpercept: mentions_newpercept(&ast.modules),
         }))
     }
 
@@ -543,4 +544,49 @@ fn rename_literal(l: &ast::Literal, ren: &Subst) -> ast::Literal {
         ast::LiteralKind::True => {}
     }
     l
+}
+
+/// True when any term of the program mentions the name `newpercept`.
+fn mentions_newpercept(modules: &[ast::Module]) -> bool {
+    let target = Sym::intern("newpercept");
+    let mut work: Vec<Term> = Vec::new();
+    for m in modules {
+        work.extend(m.knowledge.iter().map(|l| l.term.clone()));
+        for s in &m.action_specs {
+            work.push(s.pre.term.term.clone());
+        }
+        if let Some(p) = &m.program {
+            let mut rules: Vec<&ast::Rule> = p.rules.iter().collect();
+            for d in &p.macros {
+                for l in &d.body {
+                    if let ast::LiteralKind::Mental { query, .. } = &l.kind {
+                        work.push(query.term.clone());
+                    }
+                }
+            }
+            while let Some(r) = rules.pop() {
+                for l in &r.condition {
+                    if let ast::LiteralKind::Mental { query, .. } = &l.kind {
+                        work.push(query.term.clone());
+                    }
+                }
+                if let ast::RuleBody::Block(inner) = &r.body {
+                    rules.extend(inner.iter());
+                }
+            }
+        }
+    }
+    while let Some(t) = work.pop() {
+        match &t {
+            Term::Atom(a) if *a == target => return true,
+            Term::Compound(c) => {
+                if c.name == target {
+                    return true;
+                }
+                work.extend(c.args.iter().cloned());
+            }
+            _ => {}
+        }
+    }
+    false
 }

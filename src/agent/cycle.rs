@@ -242,7 +242,10 @@ impl Agent {
     ) -> Result<Option<StopReason>, RuntimeError> {
         let prog = self.program.clone();
         let core = &mut self.core;
-        let ch = core.ms.percepts.apply(percepts, &self.types);
+        let ch = core
+            .ms
+            .percepts
+            .apply(percepts, &self.types, prog.uses_newpercept);
         let record = core.level >= TraceLevel::Changes;
         for p in ch.removed.iter().filter(|_| record) {
             core.event(Event::PerceptRemoved {

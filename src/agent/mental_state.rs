@@ -63,10 +63,62 @@ impl MentalState {
     }
 
     /// All answers of `q` against the belief base (knowledge, beliefs, percepts, mail, agents).
+    ///
+    /// A top-level conjunction with negated conjuncts (and no top-level cut) is run in
+    /// segments: each negation is checked per answer of the conjuncts before it, as a cheap
+    /// `holds` when it is ground. Answers and their order are those of the whole query.
     pub fn bel(&self, q: &Term) -> Result<Vec<Subst>, Fault> {
         if self.cannot_hold(q) {
             return Ok(Vec::new());
         }
+        let parts = q.conjuncts();
+        let negation = |t: &Term| t.is_functor(wk::NOT, 1) || t.is_functor(wk::NAF, 1);
+        if parts.len() < 2
+            || !parts.iter().any(|t| negation(t))
+            || parts.iter().any(|t| t.is_functor(wk::CUT, 0))
+        {
+            return self.bel_raw(q);
+        }
+        let mut answers = vec![Subst::new()];
+        let mut i = 0;
+        while i < parts.len() && !answers.is_empty() {
+            let mut next = Vec::new();
+            if negation(parts[i]) {
+                for theta in answers {
+                    let g = theta.apply(&parts[i].args()[0]);
+                    let holds = if g.is_ground() {
+                        self.believes(&g)?
+                    } else {
+                        // `not(G)` has no answer exactly when G holds.
+                        self.bel_raw(&Term::compound(wk::NOT, vec![g]))?.is_empty()
+                    };
+                    if !holds {
+                        next.push(theta);
+                    }
+                }
+                i += 1;
+            } else {
+                let start = i;
+                while i < parts.len() && !negation(parts[i]) {
+                    i += 1;
+                }
+                let seg = Term::conjunction(parts[start..i].iter().map(|t| (*t).clone()).collect());
+                for theta in &answers {
+                    for a in self.bel_raw(&theta.apply(&seg))? {
+                        let mut s = theta.clone();
+                        for (v, t) in a.iter() {
+                            s.bind(v, t.clone());
+                        }
+                        next.push(s);
+                    }
+                }
+            }
+            answers = next;
+        }
+        Ok(answers)
+    }
+
+    fn bel_raw(&self, q: &Term) -> Result<Vec<Subst>, Fault> {
         let bases = self.bases();
         let view = View::beliefs(&self.knowledge, &bases);
         self.run(|e| e.query(&view, q), q)

@@ -4,6 +4,23 @@
 //! agents with [`Agent::new`] and an [`AgentConfig`], and run cycles with [`Agent::step`],
 //! which returns a [`CycleOutput`] (environment actions, [`Message`]s, trace [`Event`]s,
 //! printed lines, and a [`StopReason`] once the agent stopped).
+//!
+//! Design notes:
+//! * A program is compiled once (`compile.rs`: macros expanded with renamed variables, calls
+//!   resolved by name/arity, action-spec variables renamed apart) and shared by every agent;
+//!   an agent holds only its mental state, a `NativeEngine` (seeded RNG, output buffer) and
+//!   its execution stack, so 10,000 agents are cheap.
+//! * Execution is an explicit stack of frames (`module.rs`): module passes, rule applications
+//!   (answers computed up front) and combos. In main context the stack is suspended after every
+//!   rule application that performed a real action (and after an idle pass), which is the
+//!   cycle boundary of GOAL's 2014 runtime; the next `step` resumes it after percepts,
+//!   messages and the event module. `init` and `event` run to completion. Nothing recurses
+//!   over user-controlled nesting; a step budget turns endless module loops into errors.
+//! * Percepts are typed (`percepts.rs`); `percept/1` reads the typed base and `newpercept/1`
+//!   the raw batch of the current cycle.
+//! * Only the selectors `this` and `self` are supported on conditions (mental models of other
+//!   agents are not implemented); sends support `all`, `allother`, `self`, names, variables
+//!   and lists.
 
 pub mod action;
 mod compile;

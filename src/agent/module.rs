@@ -264,7 +264,14 @@ impl Core {
                         }
                         continue;
                     }
-                    let answer = r.answers[r.next].clone();
+                    // Each answer is used once: move it out instead of cloning.
+                    let answer = std::mem::replace(
+                        &mut r.answers[r.next],
+                        Answer {
+                            subst: Subst::new(),
+                            goals: Vec::new(),
+                        },
+                    );
                     r.next += 1;
                     let (b, ri) = (r.block, r.rule);
                     self.fired(rule, &answer.subst);

@@ -4,7 +4,8 @@
 use super::kr_bridge::FactBase;
 use crate::term::{well_known as wk, Sym, Term};
 use serde::Serialize;
-use std::collections::{BTreeMap, HashMap, HashSet};
+use std::collections::{BTreeMap, HashSet};
+use std::sync::OnceLock;
 
 /// How the environment sends a percept (and so how long the agent keeps it).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -84,14 +85,21 @@ impl PerceptBase {
     }
 
     /// Applies one batch according to the types.
-    pub fn apply(&mut self, batch: &[Term], types: &PerceptTypes) -> PerceptChanges {
+    pub fn apply(
+        &mut self,
+        batch: &[Term],
+        types: &PerceptTypes,
+        keep_batch: bool,
+    ) -> PerceptChanges {
         let mut ch = PerceptChanges::default();
         if !self.batch.is_empty() {
             self.batch.clear();
         }
-        for p in batch {
+        static NEWPERCEPT: OnceLock<Sym> = OnceLock::new();
+        let newpercept = *NEWPERCEPT.get_or_init(|| Sym::intern("newpercept"));
+        for p in batch.iter().filter(|_| keep_batch) {
             self.batch
-                .insert(Term::compound(Sym::intern("newpercept"), vec![p.clone()]));
+                .insert(Term::compound(newpercept, vec![p.clone()]));
         }
         let mut positive: Vec<&Term> = Vec::new();
         let mut negative: Vec<&Term> = Vec::new();
@@ -103,28 +111,25 @@ impl PerceptBase {
             }
         }
         // Predicates whose facts this batch replaces: all `Always` ones, and `OnChange` ones
-        // mentioned in the batch. Sets and a per-predicate type cache keep this linear in the
-        // batch and base sizes (a 5,000-percept batch is common in load tests).
-        let mentioned: HashSet<(Sym, usize)> =
+        // mentioned in the batch.
+        let in_batch: HashSet<&Term> = positive.iter().copied().collect();
+        // Membership only (never reaches output), so ordering by id is harmless here.
+        let mut mentioned: Vec<(Sym, usize)> =
             positive.iter().filter_map(|p| p.functor()).collect();
-        let keep: HashSet<&Term> = positive.iter().copied().collect();
-        let mut kinds: HashMap<(Sym, usize), PerceptType> = HashMap::new();
+        mentioned.sort_unstable();
+        mentioned.dedup();
         let stale: Vec<Term> = self
             .facts
             .iter()
             .filter(|f| {
                 let p = &f.args()[0];
-                let kind = match p.functor() {
-                    Some(k) => *kinds.entry(k).or_insert_with(|| types.of(p)),
-                    None => types.of(p),
-                };
-                match kind {
+                match types.of(p) {
                     PerceptType::Always => true,
                     PerceptType::OnChange => p.functor().is_some_and(|k| mentioned.contains(&k)),
                     _ => false,
                 }
             })
-            .filter(|f| !keep.contains(&f.args()[0]))
+            .filter(|f| !in_batch.contains(&f.args()[0]))
             .cloned()
             .collect();
         for f in stale {

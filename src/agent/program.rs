@@ -156,6 +156,8 @@ pub struct Program {
     pub event: Option<usize>,
     /// Warnings found while compiling.
     pub warnings: Vec<Diagnostic>,
+    /// Some query mentions `newpercept` (so the raw batch must be kept as facts).
+    pub uses_newpercept: bool,
 }
 
 impl Program {

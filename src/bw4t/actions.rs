@@ -82,9 +82,7 @@ impl World {
                     args[0]
                 )),
             },
-            ("navigateObstacles", 0) => ActionResult::fail(
-                "navigateObstacles is not available: this BW4T has no robot collisions yet",
-            ),
+            ("navigateObstacles", 0) => self.navigate_obstacles(r),
             (n, a) => ActionResult::fail(format!(
                 "unknown action {n}/{a}; robots understand {}",
                 ACTIONS.join(", ")
@@ -96,6 +94,9 @@ impl World {
         let robot = &mut self.robots[r];
         robot.collided = false;
         robot.collision = None;
+        robot.obstacles.clear();
+        robot.interrupted.clear();
+        robot.target_unreachable = false;
         robot.plan.clear();
         match plan {
             Ok(p) => {
@@ -115,6 +116,13 @@ impl World {
     }
 
     fn go_to_point(&mut self, r: usize, p: Pos) -> ActionResult {
+        let b = &self.bounds;
+        if !(b.min.x <= p.x && p.x <= b.max.x && b.min.y <= p.y && p.y <= b.max.y) {
+            return ActionResult::fail(format!(
+                "point ({}, {}) is outside the map ({}..{} x {}..{})",
+                p.x, p.y, b.min.x, b.max.x, b.min.y, b.max.y
+            ));
+        }
         let plan = self.plan_to_point(r, p);
         self.start_plan(r, plan)
     }
@@ -188,7 +196,11 @@ impl World {
         };
         let pos = self.robots[r].pos;
         let dz = self.drop_zone;
-        if self.zones[dz].rect.contains(&pos) {
+        if self
+            .zones
+            .get(dz)
+            .is_some_and(|z| z.is_drop_zone && z.rect.contains(&pos))
+        {
             self.blocks[b].state = BlockState::Gone;
             if self.sequence_done() {
                 self.stats.dropped_after_completion += 1;
@@ -231,7 +243,7 @@ impl World {
 
     fn send_message(&mut self, r: usize, to: &str, content: &Term) -> ActionResult {
         let sender: Sym = self.robots[r].sym;
-        let receivers: Vec<usize> = if to == "all" {
+        let receivers: Vec<usize> = if to == "all" || to == "allother" {
             (0..self.robots.len()).filter(|&o| o != r).collect()
         } else {
             match self.robot_index(to) {

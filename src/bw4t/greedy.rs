@@ -119,7 +119,16 @@ impl Player<'_> {
             if self.travel(Term::compound("goTo", vec![Term::atom(place)]))? {
                 return Ok(true);
             }
-            // Collided (an occupied room): wait a little and retry.
+            // Collided: try a detour around robots in the way (fails quietly without
+            // collisions or when the way is shut), else wait a little and retry.
+            if self.state == "collided" {
+                let failures = self.failures.len();
+                let detour = self.travel(Term::atom("navigateObstacles"))?;
+                self.failures.truncate(failures);
+                if detour {
+                    return Ok(true);
+                }
+            }
             for _ in 0..10 {
                 self.round(None)?;
             }

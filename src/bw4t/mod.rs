@@ -7,14 +7,19 @@
 //! ([`map::builtin`]) or imported from BW4T XML ([`xml::import`]). Behaviour follows the seed
 //! (the BW4T3 agent-environment interface) and `spec/bw4t.md`.
 //!
+//! Also here: [`greedy`], a scripted percept-driven player used as a smoke test and benchmark,
+//! and [`messages`], the seed's message vocabulary with speech acts and English sentences.
+//!
 //! Time is ticks. Within a tick, robots move in entity order: 0.25 units per tick at the
 //! default speed, one idle tick at every waypoint, arrival tolerance 0.001. Actions take effect
 //! between ticks (the caller decides when: see [`crate::env::thread`]).
 //!
+//! Robot collisions are optional (init parameter `collisions`, off by default as in BW4T):
+//! a robot whose next step would bring its box (grown by 1) onto another robot's box stops,
+//! `collided`, with `bumped(Name)`; `navigateObstacles` then plans a detour on the unit grid
+//! ([`obstacles`]) or fails and sets `oldTargetUnreachable(Id, 1)`.
+//!
 //! ## Not there yet
-//! * robot collisions, the `bumped` percept and `navigateObstacles` (the action fails with a
-//!   message saying so; robots pass through each other in corridors, as in BW4T with
-//!   collisions off, its default);
 //! * human-controlled robots and their GUI percepts; e-partners and their actions/percepts;
 //! * the size-overload/speed handicaps are plain settings ([`RobotConfig`]) rather than BW4T
 //!   bot-configuration files.
@@ -36,12 +41,23 @@
 //! * Visibility for `pickUp`/`goToBlock` uses the current position (Java: the position at the
 //!   last perceive call).
 //! * `position` percepts are off by default for every robot (init parameter
-//!   `positionPercepts`), and list the robot itself, robots and free blocks in its zone.
+//!   `positionPercepts`), and list the robot itself, every room (drop zone included), and the
+//!   robots and free blocks in the robot's zone.
 //! * Robots update in entity order (Java: Repast's shuffle); shortest routes with equal length
 //!   are chosen by map file order; random content comes from one ChaCha generator per run, and
 //!   blocks get ids in map file order (Java: `HashMap` order).
 //! * The end of the game is reported ([`crate::env::Environment::is_finished`], statistics);
 //!   the simulation keeps running afterwards as in Java.
+//! * `zone/5` lists neighbours undirected (declared in either direction), in map file order
+//!   (Java: the declared ones, in hash-set order).
+//! * Actions are applied between ticks, never during one (Java: at any time on RMI threads).
+//! * As in Java, a robot with an empty battery does not move and its plan runs out (`arrived`).
+//! * Collisions: only the moving robot stops (Java also freezes the robot it bumped into); a
+//!   step that moves away from a robot is never blocked (Java has a start-up allowance tied to
+//!   integer coordinates instead); the detour grid includes charging zones and free space and is searched
+//!   breadth-first with the zone entry rules (Java's grid has an inverted room margin).
+//! * `goTo(X, Y)` to a point outside the map area and its zones fails (Java: accepted).
+//! * `sendMessage` also accepts `allother` (GOAL's name) for `all`.
 //! * Maps with dangling neighbour names, blocks outside rooms, overlapping spawn points or doors
 //!   off their room are rejected with diagnostics (Java: ignores or crashes).
 
@@ -53,6 +69,7 @@ pub mod map;
 pub mod messages;
 pub mod motion;
 pub mod nav;
+pub mod obstacles;
 pub mod percepts;
 pub mod stats;
 pub mod world;
@@ -64,7 +81,7 @@ pub use stats::{RobotStats, RunStats};
 pub use world::{RobotConfig, RobotState, World};
 
 use crate::diag::Diagnostic;
-use crate::env::{ActionResult, EntityInfo, Environment, InitParams, PerceptDecl};
+use crate::env::{ActionResult, EntityInfo, Environment, FromInitParams, InitParams, PerceptDecl};
 use crate::term::Term;
 
 /// How to set up a run besides the map.
@@ -82,6 +99,8 @@ pub struct Bw4tConfig {
     pub one_bot_per_corridor_zone: Option<bool>,
     /// Send `position` percepts.
     pub position_percepts: bool,
+    /// Robots block each other (`bumped`, `navigateObstacles`); off by default as in BW4T.
+    pub collisions: bool,
 }
 
 /// The init parameters [`Bw4t::from_params`] understands.
@@ -96,6 +115,7 @@ pub const INIT_PARAMS: &[&str] = &[
     "size",
     "oneBotPerCorridorZone",
     "positionPercepts",
+    "collisions",
 ];
 
 /// The BW4T environment.
@@ -110,6 +130,7 @@ impl Bw4t {
     /// A run on `map` (already checked) with `config`.
     pub fn new(map: &Map, config: &Bw4tConfig) -> Bw4t {
         let mut world = World::new(map, config.seed);
+        world.collisions = config.collisions;
         if let Some(v) = config.one_bot_per_corridor_zone {
             world.one_bot_per_corridor_zone = v;
         }
@@ -213,6 +234,10 @@ impl Bw4t {
                     Some(b) => cfg.position_percepts = b,
                     None => return Err(bad(key, "true or false", v)),
                 },
+                "collisions" => match flag {
+                    Some(b) => cfg.collisions = b,
+                    None => return Err(bad(key, "true or false", v)),
+                },
                 other => {
                     return Err(vec![Diagnostic::error(
                         "M0021",
@@ -293,5 +318,15 @@ impl Environment for Bw4t {
 
     fn stats(&self) -> serde_json::Value {
         serde_json::to_value(self.run_stats()).unwrap_or(serde_json::Value::Null)
+    }
+}
+
+impl FromInitParams for Bw4t {
+    fn init_param_names() -> &'static [&'static str] {
+        INIT_PARAMS
+    }
+
+    fn from_init_params(params: &InitParams) -> Result<Self, Vec<Diagnostic>> {
+        Bw4t::from_params(params)
     }
 }

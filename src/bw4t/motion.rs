@@ -15,6 +15,8 @@ pub const HIT_WALL: &str = "hit wall";
 pub const HIT_CLOSED_DOOR: &str = "hit closed door";
 /// A corridor is occupied by another robot (with `one_bot_per_corridor_zone`).
 pub const HIT_OCCUPIED_ZONE: &str = "hit occupied zone";
+/// Another robot is in the way (collisions mode).
+pub const BUMPED: &str = "bumped into a robot";
 
 impl World {
     fn centres(&self, path: &[usize]) -> Vec<Pos> {
@@ -121,6 +123,22 @@ impl World {
         worst.map_or(Ok(()), Err)
     }
 
+    /// The robot that robot `r` would bump into by stepping from `p` to `q`: one whose box
+    /// overlaps the box of side `size + 1` around `q`, unless the step moves away from it
+    /// (so robots that start close together can always separate).
+    pub(crate) fn blocking_robot(&self, r: usize, p: &Pos, q: &Pos) -> Option<usize> {
+        let me = &self.robots[r];
+        (0..self.robots.len()).find(|&o| {
+            if o == r {
+                return false;
+            }
+            let other = &self.robots[o];
+            let lim = (me.config.size + 1.0) / 2.0 + other.config.size / 2.0;
+            let d = other.pos - q;
+            d.x.abs() < lim && d.y.abs() < lim && d.norm() < (other.pos - p).norm()
+        })
+    }
+
     /// Advances every robot by one tick, in entity order.
     pub(crate) fn step_robots(&mut self) {
         for r in 0..self.robots.len() {
@@ -166,12 +184,22 @@ impl World {
         } else {
             pos + (wp - pos) * (step / d)
         };
-        match self.entry_check(r, &pos, &q) {
+        let blocker = if self.collisions {
+            self.blocking_robot(r, &pos, &q)
+        } else {
+            None
+        };
+        let check = match blocker {
+            Some(_) => Err(BUMPED),
+            None => self.entry_check(r, &pos, &q),
+        };
+        match check {
             Err(why) => {
                 let robot = &mut self.robots[r];
                 robot.collided = true;
                 robot.collision = Some(why);
-                robot.plan.clear();
+                robot.obstacles = blocker.into_iter().collect();
+                robot.interrupted = robot.plan.drain(..).collect();
             }
             Ok(()) => {
                 let room = self.room_at(&q);

@@ -33,6 +33,7 @@ pub fn declarations() -> Vec<PerceptDecl> {
         d("occupied", 1, OnChangeWithNegation),
         d("holding", 1, OnChangeWithNegation),
         d("player", 1, OnChangeWithNegation),
+        d("bumped", 1, OnChangeWithNegation),
         d("color", 2, Always),
         d("message", 2, Always),
     ]
@@ -62,6 +63,7 @@ struct Syms {
     occupied: Sym,
     holding: Sym,
     player: Sym,
+    bumped: Sym,
     color: Sym,
     message: Sym,
     true_: Sym,
@@ -97,6 +99,7 @@ fn syms() -> &'static Syms {
         occupied: Sym::intern("occupied"),
         holding: Sym::intern("holding"),
         player: Sym::intern("player"),
+        bumped: Sym::intern("bumped"),
         color: Sym::intern("color"),
         message: Sym::intern("message"),
         true_: Sym::intern("true"),
@@ -117,7 +120,53 @@ fn colour_atom(col: Color) -> Term {
     Term::Atom(syms().colours[i])
 }
 
+/// Percepts of a robot that only change when robots are added; built once, shared by cloning
+/// (cloned terms compare by pointer first, which keeps the per-tick filter cheap).
+#[derive(Clone, Debug)]
+pub(crate) struct FixedPercepts {
+    gripper_capacity: Term,
+    speed: Term,
+    robot_sizes: Vec<Term>,
+    players: Vec<Term>,
+}
+
 impl World {
+    /// Rebuilds every robot's [`FixedPercepts`] (after robots were added).
+    pub(crate) fn rebuild_percept_cache(&mut self) {
+        let y = syms();
+        let robot_sizes: Vec<Term> = self
+            .robots
+            .iter()
+            .map(|o| {
+                let s = o.config.size.round() as i64;
+                c(
+                    y.robot_size,
+                    vec![Term::Int(o.id), Term::Int(s), Term::Int(s)],
+                )
+            })
+            .collect();
+        self.percept_cache = (0..self.robots.len())
+            .map(|r| {
+                let robot = &self.robots[r];
+                FixedPercepts {
+                    gripper_capacity: c(
+                        y.gripper_capacity,
+                        vec![Term::Int(robot.config.gripper_capacity as i64)],
+                    ),
+                    speed: c(y.speed, vec![Term::from(robot.config.speed)]),
+                    robot_sizes: robot_sizes.clone(),
+                    players: self
+                        .robots
+                        .iter()
+                        .enumerate()
+                        .filter(|(i, _)| *i != r)
+                        .map(|(_, o)| c(y.player, vec![Term::Atom(o.sym)]))
+                        .collect(),
+                }
+            })
+            .collect();
+    }
+
     /// The full current truth of robot `r`'s percepts, grouped as [`declarations`]; once-percepts
     /// only when `first`; `position` only when `positions`. Drains the robot's inbox.
     pub(crate) fn current_percepts(
@@ -196,30 +245,20 @@ impl World {
             .map(|&b| Term::Int(self.blocks[b].id))
             .collect();
         g.push(vec![c(y.holdingblocks, vec![Term::list(stack)])]);
-        g.push(vec![c(
-            y.gripper_capacity,
-            vec![Term::Int(robot.config.gripper_capacity as i64)],
-        )]);
-        g.push(vec![c(y.speed, vec![Term::from(robot.config.speed)])]);
+        let fixed = &self.percept_cache[r];
+        g.push(vec![fixed.gripper_capacity.clone()]);
+        g.push(vec![fixed.speed.clone()]);
         g.push(vec![c(
             y.battery,
             vec![Term::from(robot.battery_percent())],
         )]);
-        g.push(
-            self.robots
-                .iter()
-                .map(|o| {
-                    let s = o.config.size.round() as i64;
-                    c(
-                        y.robot_size,
-                        vec![Term::Int(o.id), Term::Int(s), Term::Int(s)],
-                    )
-                })
-                .collect(),
-        );
+        g.push(fixed.robot_sizes.clone());
         g.push(vec![c(
             y.old_target_unreachable,
-            vec![Term::Int(robot.id), Term::Int(0)],
+            vec![
+                Term::Int(robot.id),
+                Term::Int(robot.target_unreachable as i64),
+            ],
         )]);
         let mut pos_terms = Vec::new();
         if positions {
@@ -230,6 +269,13 @@ impl World {
                 )
             };
             pos_terms.push(pos(robot.id, &robot.pos));
+            for z in self
+                .zones
+                .iter()
+                .filter(|z| z.kind == super::map::ZoneKind::Room)
+            {
+                pos_terms.push(pos(z.id, &z.centre()));
+            }
             if let Some(z) = here {
                 let rect = self.zones[z].rect;
                 for (i, o) in self.robots.iter().enumerate() {
@@ -278,14 +324,16 @@ impl World {
                 .map(|&b| c(y.holding, vec![Term::Int(self.blocks[b].id)]))
                 .collect(),
         );
-        g.push(
-            self.robots
+        g.push(fixed.players.clone());
+        g.push(if robot.collided {
+            robot
+                .obstacles
                 .iter()
-                .enumerate()
-                .filter(|(i, _)| *i != r)
-                .map(|(_, o)| c(y.player, vec![Term::Atom(o.sym)]))
-                .collect(),
-        );
+                .map(|&o| c(y.bumped, vec![Term::Atom(self.robots[o].sym)]))
+                .collect()
+        } else {
+            Vec::new()
+        });
         g.push(colours);
         let inbox = std::mem::take(&mut self.robots[r].inbox);
         g.push(

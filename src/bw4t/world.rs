@@ -137,8 +137,14 @@ pub struct Robot {
     /// Remaining waypoints; the front is the current one.
     pub plan: VecDeque<Pos>,
     pub collided: bool,
-    /// Why the last step failed (hit wall, closed door, occupied zone).
+    /// Why the last step failed (hit wall, closed door, occupied zone, bumped into a robot).
     pub collision: Option<&'static str>,
+    /// Robots this robot bumped into (collisions mode), while collided.
+    pub obstacles: Vec<usize>,
+    /// The plan that was interrupted by the last collision (for `navigateObstacles`).
+    pub interrupted: Vec<Pos>,
+    /// Set when `navigateObstacles` found no way to the interrupted plan's target.
+    pub target_unreachable: bool,
     /// Current battery level (meaningful only with a battery).
     pub battery: f64,
     pub stats: RobotStats,
@@ -184,6 +190,10 @@ pub struct World {
     pub sequence: Vec<Color>,
     pub sequence_index: usize,
     pub one_bot_per_corridor_zone: bool,
+    /// Robots block each other (BW4T's optional collisions; off by default).
+    pub collisions: bool,
+    /// The map area together with every zone: movement targets must lie inside.
+    pub bounds: Rect,
     pub tick: u64,
     pub stats: RunStats,
     /// Spawn points not used yet.
@@ -191,6 +201,7 @@ pub struct World {
     pub(crate) next_id: i64,
     pub(crate) rng: ChaCha8Rng,
     pub(crate) nav: Nav,
+    pub(crate) percept_cache: Vec<super::percepts::FixedPercepts>,
 }
 
 impl World {
@@ -249,6 +260,14 @@ impl World {
             })
             .collect();
         let drop_zone = zones.iter().position(|z| z.is_drop_zone).unwrap_or(0);
+        let mut bounds = Rect {
+            min: Pos::new(0.0, 0.0),
+            max: Pos::new(map.width.max(0.0), map.height.max(0.0)),
+        };
+        for z in &zones {
+            bounds.min = bounds.min.inf(&z.rect.min);
+            bounds.max = bounds.max.sup(&z.rect.max);
+        }
         let mut sequence: Vec<Color> = map
             .sequence
             .iter()
@@ -294,12 +313,15 @@ impl World {
             sequence,
             sequence_index: 0,
             one_bot_per_corridor_zone: map.one_bot_per_corridor_zone,
+            collisions: false,
+            bounds,
             tick: 0,
             stats: RunStats::default(),
             spawns: map.spawns.iter().map(|s| Pos::new(s[0], s[1])).collect(),
             next_id,
             rng,
             nav: Nav::default(),
+            percept_cache: Vec::new(),
         };
         world.nav = Nav::new(&world.zones);
         for &r in &rooms {
@@ -341,11 +363,15 @@ impl World {
             plan: VecDeque::new(),
             collided: false,
             collision: None,
+            obstacles: Vec::new(),
+            interrupted: Vec::new(),
+            target_unreachable: false,
             inbox: VecDeque::new(),
             filter: PerceptFilter::new(&super::percepts::declarations()),
             room,
         });
         self.next_id += 1;
+        self.rebuild_percept_cache();
         Ok(idx)
     }
 

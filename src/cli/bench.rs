@@ -46,7 +46,11 @@ pub fn main(args: Args) -> ExitCode {
     for name in names {
         let mut reports = Vec::new();
         // Memory per idle agent is RSS growth: only a first run in the process measures it.
-        let runs = if name == "agents" { 1 } else { args.runs.max(1) };
+        let runs = if name == "agents" {
+            1
+        } else {
+            args.runs.max(1)
+        };
         for _ in 0..runs {
             match bench::run(name, &params, args.workers) {
                 Ok(r) => reports.push(r),

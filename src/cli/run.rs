@@ -42,6 +42,9 @@ pub struct Args {
     /// Pace the rounds to this many ticks per second (for watching).
     #[arg(long)]
     pub realtime: Option<f64>,
+    /// Stop after this many seconds of wall time (the trace then depends on timing).
+    #[arg(long)]
+    pub time_limit: Option<f64>,
     /// Step every agent every tick, even when it has nothing new (slower; same trace).
     #[arg(long)]
     pub no_skip: bool,
@@ -83,9 +86,13 @@ impl Observer for Console {
         }
     }
     fn warning(&mut self, text: &str) {
-        if self.verbose || !text.contains("failed:") {
+        self.clear();
+        eprintln!("warning: {text}");
+    }
+    fn action_failed(&mut self, agent: &str, action: &goal::term::Term, reason: &str) {
+        if self.verbose {
             self.clear();
-            eprintln!("warning: {text}");
+            eprintln!("{agent}: action {action} failed: {reason}");
         }
     }
     fn wants_progress(&self) -> bool {
@@ -139,6 +146,10 @@ pub fn main(args: Args) -> ExitCode {
             args.max_ticks
         },
         realtime: args.realtime,
+        time_limit: args
+            .time_limit
+            .filter(|t| t.is_finite() && *t > 0.0)
+            .map(std::time::Duration::from_secs_f64),
         skip_idle: !args.no_skip,
         trace_rules: args.trace.is_some(),
         ..RunOptions::default()

@@ -6,10 +6,13 @@
 //! [`Environment::percepts`]. Each percept predicate has a declared [`PerceptType`]; the agent
 //! runtime keeps a typed percept base from the batches (see `architecture.md`, "Typed percepts").
 //! [`filter::PerceptFilter`] turns the full current truth into such batches.
+//! [`thread::EnvHandle`] runs any environment on its own thread (lock-step or real-time), and
+//! [`FromInitParams`] creates one from init parameters (key -> term).
 
 pub mod filter;
 pub mod thread;
 
+use crate::diag::Diagnostic;
 use crate::term::Term;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -99,4 +102,12 @@ pub trait Environment: Send {
     fn is_finished(&self) -> bool;
     /// Run statistics as JSON.
     fn stats(&self) -> serde_json::Value;
+}
+
+/// Environments that can be set up from init parameters (e.g. those of a `.mas2g` file).
+pub trait FromInitParams: Sized {
+    /// The parameter keys this environment understands.
+    fn init_param_names() -> &'static [&'static str];
+    /// Creates the environment; bad or unknown parameters are diagnostics.
+    fn from_init_params(params: &InitParams) -> Result<Self, Vec<Diagnostic>>;
 }

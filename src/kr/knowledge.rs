@@ -15,6 +15,8 @@ pub(crate) struct Clause {
     pub code: Code,
     pub head: Cell,
     pub body: Vec<Cell>,
+    /// The predicate each body goal calls, resolved when loading finishes.
+    pub preds: Vec<Option<PredRef>>,
     pub nslots: u32,
     pub key: Option<Key>,
 }
@@ -42,11 +44,13 @@ pub(crate) enum PredRef {
 }
 
 /// Compiled knowledge clauses plus the table resolving every callable name.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct Knowledge {
     pub(crate) preds: Vec<Pred>,
     pub(crate) table: FxHashMap<(Sym, u32), PredRef>,
     clause_count: usize,
+    /// The clauses as loaded (for engines that load source, such as a scryer engine).
+    source: Vec<Term>,
 }
 
 /// Names that GOAL programs may not use as predicates (goal-language.md §3.3).
@@ -204,11 +208,9 @@ impl Knowledge {
     /// predicates, directives and clauses whose head is not an atom or compound term.
     pub fn load(clauses: &[Term]) -> Result<Arc<Knowledge>, KrError> {
         let lib = builtins::library();
-        let mut k = Knowledge {
-            preds: Vec::new(),
-            table: lib.table.clone(),
-            clause_count: 0,
-        };
+        let mut k = Knowledge::blank();
+        k.table = lib.table.clone();
+        k.source = clauses.to_vec();
         let mut errors = Vec::new();
         for (i, t) in clauses.iter().enumerate() {
             if let Err(e) = k.add_checked(t, i) {
@@ -222,9 +224,26 @@ impl Knowledge {
         Ok(Arc::new(k))
     }
 
-    /// Knowledge without clauses.
+    /// A knowledge base with no clauses and no names at all (the library starts from it).
+    pub(crate) fn blank() -> Knowledge {
+        Knowledge {
+            preds: Vec::new(),
+            table: FxHashMap::default(),
+            clause_count: 0,
+            source: Vec::new(),
+        }
+    }
+
+    /// Knowledge without clauses (the built-ins and the library only).
     pub fn empty() -> Arc<Knowledge> {
-        Knowledge::load(&[]).unwrap_or_default()
+        let mut k = Knowledge::blank();
+        k.table = builtins::library().table.clone();
+        Arc::new(k)
+    }
+
+    /// The clauses as given to [`Knowledge::load`].
+    pub fn source(&self) -> &[Term] {
+        &self.source
     }
 
     /// Number of clauses loaded.
@@ -235,6 +254,26 @@ impl Knowledge {
     /// True when no clauses were loaded.
     pub fn is_empty(&self) -> bool {
         self.clause_count == 0
+    }
+
+    /// Checks a query or condition for protected predicates (as loading does for clause
+    /// bodies); the error lists every problem found.
+    pub fn check_query(goal: &Term) -> Result<(), KrError> {
+        let mut problems = Vec::new();
+        check_body(goal, &mut problems);
+        if problems.is_empty() {
+            return Ok(());
+        }
+        Err(KrError::Load(
+            problems
+                .into_iter()
+                .map(|message| LoadError {
+                    clause: 0,
+                    predicate: None,
+                    message,
+                })
+                .collect(),
+        ))
     }
 
     /// The predicates defined by knowledge clauses, in order of first definition.
@@ -356,6 +395,7 @@ impl Knowledge {
         self.preds[idx as usize].clauses.push(Clause {
             code,
             head: head_cell,
+            preds: Vec::new(),
             body: body_cells,
             nslots: vars.len() as u32,
             key,
@@ -365,8 +405,23 @@ impl Knowledge {
 
     /// Builds the indexes; call after the last `add`.
     pub(crate) fn finish(&mut self) {
+        let table = &self.table;
         for p in &mut self.preds {
             p.index();
+            for c in &mut p.clauses {
+                c.preds = c
+                    .body
+                    .iter()
+                    .map(|g| {
+                        let f = match *g {
+                            Cell::Atom(s) => Some((s, 0)),
+                            Cell::Ptr(off) => c.code.cells[off as usize].fun(),
+                            _ => None,
+                        };
+                        f.and_then(|f| table.get(&f).copied())
+                    })
+                    .collect();
+            }
         }
     }
 

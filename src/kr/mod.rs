@@ -11,7 +11,8 @@
 //!   `Arc` (per-agent state never copies it). Loading rejects protected predicates (`assert`,
 //!   `retract`, `:`, `catch`, directives, ... see goal-language.md §3.3), redefinitions of
 //!   built-ins, and clauses whose head is not callable, with a [`KrError::Load`] listing every
-//!   offending clause and naming the predicate.
+//!   offending clause and naming the predicate. [`Knowledge::check_query`] applies the same
+//!   check to a query or condition.
 //! * [`FactBase`]: an indexed set of ground facts (by predicate and by the first two
 //!   arguments; a compound argument is keyed by its functor). [`FactBase::insert`] and
 //!   [`FactBase::delete`] are O(1) expected, return whether anything changed, and free memory
@@ -25,7 +26,9 @@
 //!   beliefs). Predicates with neither clauses nor facts simply fail (GOAL semantics); calling
 //!   an unbound variable is an instantiation error.
 //! * [`Engine`]: the query interface, implemented by [`NativeEngine`] (the default; a
-//!   scryer-backed engine can implement the same trait). `query` returns every answer as a
+//!   scryer-backed engine can implement the same trait; [`Knowledge::source`] keeps the clauses
+//!   as loaded for such an engine).
+//!   [`NativeEngine::solve`] streams answers to a callback instead of collecting them. `query` returns every answer as a
 //!   [`Subst`] over the query's variables, in Prolog solution order; `query_first` stops at the
 //!   first; `holds` is the cheap yes/no check for conditions such as `bel(on(a,b))`.
 //!   Variables left unbound by an answer are not in the substitution; variables bound to each
@@ -38,7 +41,13 @@
 //!   `error(type_error(evaluable, foo/0), _)`, `error(evaluation_error(zero_divisor), _)`.
 //!   [`KrError::to_term`] gives a printable term. No query can panic, hang (see [`Limits`]) or
 //!   overflow the Rust stack: the solver, unification, comparison, copying and arithmetic are
-//!   iterative.
+//!   iterative. The depth bound counts the length of the continuation (pending goals), so
+//!   deterministic tail recursion over a long list is fine while `p :- p, q.` or a
+//!   left-recursive rule stops with [`KrError::Depth`]; `p :- p.` runs in constant space and
+//!   stops at the inference budget. Cyclic terms (possible without the occurs check, e.g.
+//!   `X = f(X)`) give `error(representation_error(cyclic_term), _)` instead of endless loops,
+//!   and terms nested deeper than 10,000 cannot be written (`resource_error(print_depth)`),
+//!   since the term printer recurses.
 //!
 //! ```
 //! use goal::kr::{Engine, FactBase, Knowledge, NativeEngine, View};
@@ -62,13 +71,16 @@
 //! `native/` holds a Prolog engine written for GOAL's needs: terms are copied onto a heap of
 //! cells (`store.rs`) with a trail; knowledge clauses are compiled to flat cells with numbered
 //! variable slots (`code.rs`), so a head is unified directly against the goal and only the body
-//! is built; `machine.rs` runs SLD resolution with an explicit goal-frame arena and choicepoint
+//! is built; `machine.rs` (with `control.rs` and `facts.rs`) runs SLD resolution with an explicit goal-frame arena and choicepoint
 //! stack (cut barriers per clause, opaque `call/N`, `\+`, `->`, `*->`, `findall/3` collecting
 //! off-heap). Clauses are indexed on the first argument when a predicate has four or more.
 //! Built-ins are native Rust (`builtins.rs`, `arith.rs`, `text.rs`, `lists.rs`, `output.rs`)
 //! or standard Prolog definitions compiled once per process (`prelude.rs`: `append/3`,
 //! `select/3`, `maplist/2..5`, `foldl/4..6`, `bagof/3`, `setof/3`, `aggregate_all/3,4`, ...).
-//! A program may redefine library predicates (`append/3`, ...) but not ISO built-ins.
+//! A program may redefine library predicates (`append/3`, ...) but not ISO built-ins; the
+//! library's own clauses keep calling the library definitions (as SWI-Prolog modules do).
+//! Body goals are resolved to their predicate when knowledge is loaded, so a call costs no
+//! table lookup.
 //! Output built-ins write to a buffer taken with [`Engine::take_output`]; `random/1` and friends
 //! use the engine's seeded ChaCha8 RNG. The solver's buffers are per thread and reused by every
 //! query, so an agent only holds its [`NativeEngine`] (limits, RNG, output buffer).

@@ -4,6 +4,20 @@
 //! `.goal` file, no environment) or [`default_team::system`] (the built-in BW4T team), then
 //! [`run::run`] it with [`run::RunOptions`]; the result is a [`stats::RunSummary`]. Traces are
 //! JSON lines ([`trace::TraceWriter`], format in `docs/trace-format.md`).
+//!
+//! Lock-step rounds (architecture.md, "Threads and determinism"): the environment runs on its
+//! own thread ([`crate::env::thread`]), agents are owned by the workers of a
+//! [`scheduler::Pool`] (worker 0 is the scheduler thread), environment actions are applied in
+//! agent-name order and messages delivered at the next round in (sender, sequence) order, so
+//! a run depends only on programs, map and seed. Agents with nothing new are not stepped.
+//!
+//! ## Not there yet
+//! * Real-time mode: `--realtime TPS` paces the lock-step rounds (same trace, slower); agents
+//!   do not yet cycle freely against a free-running environment.
+//! * Entities that are freed or deleted during a run (BW4T never does this today), so agents
+//!   are never stopped or relaunched by the environment.
+//! * Environments other than the built-in `bw4t`; `language=` of agent files is ignored.
+//! * Mental models (§8.4) and CLAMR sessions (conversation tracking).
 
 pub mod default_team;
 pub mod launch;

@@ -78,6 +78,8 @@ pub trait Observer {
     fn message(&mut self, _round: u64, _m: &Message, _delivered: bool) {}
     /// A runtime warning.
     fn warning(&mut self, _text: &str) {}
+    /// The environment refused an action.
+    fn action_failed(&mut self, _agent: &str, _action: &Term, _reason: &str) {}
     /// True when the observer wants [`Observer::progress`] calls (they cost a status query).
     fn wants_progress(&self) -> bool {
         false
@@ -534,10 +536,7 @@ impl<'a> Setup<'a> {
                         }
                         for (k, (_, result)) in reply.results.iter().enumerate() {
                             if let ActionResult::Failed(m) = result {
-                                obs.warning(&format!(
-                                    "{}: action {} failed: {m}",
-                                    self.slots[actors[k]].name, actions[k].1
-                                ));
+                                obs.action_failed(&self.slots[actors[k]].name, &actions[k].1, m);
                             }
                         }
                         tick = reply.tick;

@@ -125,14 +125,22 @@ pub fn from_mas_text(file: &str, text: &str, origin: Origin) -> Result<MasSystem
     };
     system.env = env_params(&mas, &origin);
     let mut problems = Vec::new();
+    let mut compiled: BTreeMap<String, (String, Arc<Program>)> = BTreeMap::new();
     for af in &mas.agent_files {
         let reference = af.reference_name();
         if system.programs.contains_key(&reference) {
             continue;
         }
+        // The same file under two reference names is compiled once and shared.
+        if let Some((path, prog)) = compiled.get(&af.path.value) {
+            system.files.insert(reference.clone(), String::clone(path));
+            system.programs.insert(reference, Arc::clone(prog));
+            continue;
+        }
         match compile_file(&origin, &af.path.value) {
             Ok((path, prog, warns)) => {
                 system.warnings.extend(warns);
+                compiled.insert(af.path.value.clone(), (path.clone(), prog.clone()));
                 system.files.insert(reference.clone(), path);
                 system.programs.insert(reference, prog);
             }

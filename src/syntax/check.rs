@@ -88,7 +88,17 @@ pub fn check_path(path: &Path) -> FileReport {
             ));
             d
         }
-        "mod2g" => goal::parse_mod2g(&file, &source).1,
+        "mod2g" => {
+            let (module, mut d) = goal::parse_mod2g(&file, &source);
+            if let Some(m) = &module {
+                d.extend(crate::syntax::validate::validate_module_file(
+                    m,
+                    &file,
+                    Some(base_dir(path)),
+                ));
+            }
+            d
+        }
         "pl" => {
             let (clauses, mut d) = Reader::new(file.as_str()).clauses(&source, 0);
             d.extend(crate::syntax::validate::validate_prolog(&clauses, &file));

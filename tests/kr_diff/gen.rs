@@ -25,7 +25,7 @@ fn constant(rng: &mut ChaCha8Rng) -> Term {
 }
 
 fn arg(rng: &mut ChaCha8Rng) -> Term {
-    if rng.gen_bool(0.55) {
+    if rng.gen_bool(0.65) {
         v(VARS.choose(rng).copied().unwrap_or("X"))
     } else {
         constant(rng)
@@ -40,7 +40,7 @@ pub fn fact_set(rng: &mut ChaCha8Rng, n: usize) -> Program {
         if name == "u" {
             continue;
         }
-        for _ in 0..rng.gen_range(0..12) {
+        for _ in 0..rng.gen_range(2..14) {
             let args = (0..arity).map(|_| constant(rng)).collect();
             clauses.push(c(name, args));
         }
@@ -65,6 +65,19 @@ pub fn fact_set(rng: &mut ChaCha8Rng, n: usize) -> Program {
         c("w", vec![v("X")]),
         vec![c("r", vec![v("X"), v("X")])],
     ));
+    // Random rules with cuts, negation, if-then-else and all-solutions calls in their bodies.
+    for (name, head) in [("g", vec![v("X")]), ("h", vec![v("X"), v("Y")])] {
+        for _ in 0..rng.gen_range(1..=3) {
+            let mut body: Vec<Term> = (0..rng.gen_range(1..=3))
+                .map(|_| goal(rng, 1, false))
+                .collect();
+            if rng.gen_bool(0.4) {
+                let at = rng.gen_range(0..=body.len());
+                body.insert(at, a("!"));
+            }
+            clauses.push(rule(c(name, head.clone()), body));
+        }
+    }
     let queries = (0..n).map(|_| query(rng)).collect();
     Program {
         name: "facts".into(),
@@ -73,7 +86,9 @@ pub fn fact_set(rng: &mut ChaCha8Rng, n: usize) -> Program {
     }
 }
 
-fn literal(rng: &mut ChaCha8Rng) -> Term {
+/// A literal over the fact predicates and the fixed rules; with `top`, also over the generated
+/// rules `g/1` and `h/2` (their own bodies never call them, so every program terminates).
+fn literal(rng: &mut ChaCha8Rng, top: bool) -> Term {
     let preds: &[(&str, usize)] = &[
         ("p", 1),
         ("q", 2),
@@ -82,37 +97,43 @@ fn literal(rng: &mut ChaCha8Rng) -> Term {
         ("u", 1),
         ("t", 2),
         ("w", 1),
+        ("g", 1),
+        ("h", 2),
     ];
-    let &(name, arity) = preds.choose(rng).unwrap_or(&("p", 1));
+    let n = if top { preds.len() } else { preds.len() - 2 };
+    let (name, arity) = preds[rng.gen_range(0..n)];
     c(name, (0..arity).map(|_| arg(rng)).collect())
 }
 
-fn goal(rng: &mut ChaCha8Rng, depth: u32) -> Term {
+fn goal(rng: &mut ChaCha8Rng, depth: u32, top: bool) -> Term {
     let k = rng.gen_range(0..100);
     match k {
-        0..=49 => literal(rng),
-        50..=57 => naf(literal(rng)),
-        58..=61 => c("not", vec![literal(rng)]),
-        62..=66 => op(
-            ["\\==", "==", "@<", "\\=", "="]
+        0..=49 => literal(rng, top),
+        50..=57 => naf(literal(rng, top)),
+        58..=61 => c("not", vec![literal(rng, top)]),
+        62..=65 => op(
+            ["\\==", "==", "\\=", "="]
                 .choose(rng)
                 .copied()
                 .unwrap_or("=="),
             arg(rng),
             arg(rng),
         ),
-        67..=74 if depth > 0 => and(vec![goal(rng, depth - 1), goal(rng, depth - 1)]),
-        75..=79 if depth > 0 => op(";", goal(rng, depth - 1), goal(rng, depth - 1)),
+        // The standard order of two distinct unbound variables is implementation-defined (ISO
+        // 7.2.1): compare with a constant only.
+        66 => op("@<", arg(rng), constant(rng)),
+        67..=74 if depth > 0 => and(vec![goal(rng, depth - 1, top), goal(rng, depth - 1, top)]),
+        75..=79 if depth > 0 => op(";", goal(rng, depth - 1, top), goal(rng, depth - 1, top)),
         80..=83 if depth > 0 => op(
             ";",
-            op("->", goal(rng, depth - 1), goal(rng, depth - 1)),
-            goal(rng, depth - 1),
+            op("->", goal(rng, depth - 1, top), goal(rng, depth - 1, top)),
+            goal(rng, depth - 1, top),
         ),
         84..=86 if depth > 0 => c(
             "findall",
             vec![
                 v(VARS.choose(rng).copied().unwrap_or("X")),
-                goal(rng, depth - 1),
+                goal(rng, depth - 1, top),
                 result_var(rng, "L"),
             ],
         ),
@@ -128,11 +149,11 @@ fn goal(rng: &mut ChaCha8Rng, depth: u32) -> Term {
             };
             c(
                 "aggregate_all",
-                vec![tmpl, literal(rng), result_var(rng, "N")],
+                vec![tmpl, literal(rng, top), result_var(rng, "N")],
             )
         }
-        90..=92 => c("forall", vec![literal(rng), literal(rng)]),
-        93..=95 => c("once", vec![literal(rng)]),
+        90..=92 => c("forall", vec![literal(rng, top), literal(rng, top)]),
+        93..=95 => c("once", vec![literal(rng, top)]),
         96..=97 => {
             // setof/bagof with and without `^`.
             let name = if rng.gen_bool(0.5) { "setof" } else { "bagof" };
@@ -144,21 +165,24 @@ fn goal(rng: &mut ChaCha8Rng, depth: u32) -> Term {
             };
             c(name, vec![v("X"), g, result_var(rng, "L")])
         }
-        _ => and(vec![literal(rng), a("!"), literal(rng)]),
+        _ => and(vec![literal(rng, top), a("!"), literal(rng, top)]),
     }
 }
 
-/// A fresh result variable (`L17`, `N3`, ...): a result argument that is already bound to a
-/// non-list is a known disagreement (see `KNOWN_DISAGREEMENTS` in `tests/kr_diff.rs`), tested
-/// on its own instead.
+/// A result variable: half the time shared between goals (`L`, `N`: a later all-solutions call
+/// may find it bound, even to a non-list), else fresh (`L17`, `N3`, ...).
 fn result_var(rng: &mut ChaCha8Rng, prefix: &str) -> Term {
-    v(&format!("{prefix}{}", rng.gen_range(0..1000)))
+    if rng.gen_bool(0.5) {
+        v(prefix)
+    } else {
+        v(&format!("{prefix}{}", rng.gen_range(0..1000)))
+    }
 }
 
 /// A random query over the fact set predicates.
 pub fn query(rng: &mut ChaCha8Rng) -> Term {
     let n = rng.gen_range(1..=3);
-    and((0..n).map(|_| goal(rng, 2)).collect())
+    and((0..n).map(|_| goal(rng, 2, true)).collect())
 }
 
 fn small_list(rng: &mut ChaCha8Rng, max: usize) -> Term {

@@ -6,10 +6,23 @@ use goal::kr::{Engine, FactBase, Knowledge, NativeEngine, View};
 use goal::term::Term;
 use std::sync::Arc;
 
-/// The native engine with one loaded program: knowledge clauses and, optionally, a fact base.
+/// Where a program's ground facts live on the native side.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Facts {
+    /// Knowledge clauses, like the rules.
+    Knowledge,
+    /// An indexed belief base (`FactBase`), queried through the belief view.
+    Beliefs,
+    /// The facts of one goal (a scanned slice), queried through the goal view.
+    Goal,
+}
+
+/// The native engine with one loaded program: knowledge clauses and, optionally, facts in a
+/// belief base or a goal.
 pub struct Native {
     knowledge: Arc<Knowledge>,
     facts: FactBase,
+    goal_facts: Vec<Term>,
     engine: NativeEngine,
 }
 
@@ -19,6 +32,7 @@ impl Native {
         Native {
             knowledge: Knowledge::empty(),
             facts: FactBase::new(),
+            goal_facts: Vec::new(),
             engine: NativeEngine::new(1),
         }
     }
@@ -29,11 +43,16 @@ impl Native {
         Ok(())
     }
 
-    /// Loads rules as knowledge and ground facts into a belief base.
-    pub fn load_split(&mut self, rules: &[Term], facts: &[Term]) -> Result<(), String> {
+    /// Loads rules as knowledge and ground facts into a belief base or a goal.
+    pub fn load_split(&mut self, rules: &[Term], facts: &[Term], at: Facts) -> Result<(), String> {
         self.load(rules)?;
-        for f in facts {
-            self.facts.insert(f.clone());
+        match at {
+            Facts::Goal => self.goal_facts = facts.to_vec(),
+            _ => {
+                for f in facts {
+                    self.facts.insert(f.clone());
+                }
+            }
         }
         Ok(())
     }
@@ -41,7 +60,11 @@ impl Native {
     /// Runs `goal` on the belief view and returns the instances of `template`, or the error.
     pub fn query(&mut self, template: &Term, goal: &Term) -> Outcome {
         let bases = [&self.facts];
-        let view = View::beliefs(&self.knowledge, &bases);
+        let view = if self.goal_facts.is_empty() {
+            View::beliefs(&self.knowledge, &bases)
+        } else {
+            View::goal(&self.knowledge, &self.goal_facts)
+        };
         match self.engine.query(&view, goal) {
             Ok(answers) => Outcome::Answers(
                 answers

@@ -19,10 +19,16 @@ pub const PRELUDE: &str = r#"
 :- use_module(library(iso_ext)).
 :- use_module(library(pairs)).
 :- use_module(library(ordsets)).
+:- use_module(library(error)).
 :- set_prolog_flag(unknown, fail).
 
 not(G) :- \+ call(G).
+
+'$goal_run'(T, G, R) :- catch(findall(T, G, L), E, true), ( var(E) -> R = ok(L) ; R = err(E) ).
 ignore(G) :- ( call(G) -> true ; true ).
+
+atom_number(A, N) :- var(A), !, number(N), number_chars(N, Cs), atom_chars(A, Cs).
+atom_number(A, N) :- atom_chars(A, Cs), catch(number_chars(N0, Cs), _, fail), N = N0.
 
 '$goal_is'(X, E) :- '$goal_eval'(E, V), X = V.
 '$goal_cmp'(Op, A, B) :- '$goal_eval'(A, VA), '$goal_eval'(B, VB), G =.. [Op, VA, VB], call(G).
@@ -180,33 +186,35 @@ impl Scryer {
     /// Runs `goal` and returns its answers as instances of `template`, collected inside scryer
     /// with `findall/3` (so bindings between query variables survive), or the error it raised.
     pub fn query(&mut self, template: &Term, goal: &Term) -> Outcome {
-        // The query is wrapped in `catch/3`: an error that escapes to scryer 0.10's library
-        // interface is not cleared and comes back as the answer of the next queries.
+        // The goal runs inside the prelude's `'$goal_run'/3`, under `catch/3` (an error that
+        // escapes to scryer 0.10's library interface is not cleared and comes back as the answer
+        // of the next queries) and not as query text (scryer compiles control constructs in a
+        // query on every run: 1.5 ms instead of 0.1 ms).
         let out = Term::var("GoalDiffOut__");
-        let err = Term::var("GoalDiffErr__");
-        let findall = Term::compound(
-            Sym::intern("findall"),
+        let q = Term::compound(
+            Sym::intern("$goal_run"),
             vec![template.clone(), goal.clone(), out],
         );
-        let q = Term::compound(Sym::intern("catch"), vec![findall, err, Term::atom("true")]);
-        match self.solutions(&q) {
-            Err(e) => Outcome::Error(canonical(&e)),
-            Ok(answers) => {
-                let mut list = None;
-                for a in answers {
-                    if let LeafAnswer::LeafAnswer { bindings, .. } = a {
-                        if let Some(e) = bindings.get("GoalDiffErr__") {
-                            return Outcome::Error(canonical(&from_scryer(e)));
-                        }
-                        list = bindings.get("GoalDiffOut__").cloned();
-                    }
+        let answers = match self.solutions(&q) {
+            Err(e) => return Outcome::Error(canonical(&e)),
+            Ok(answers) => answers,
+        };
+        for a in answers {
+            if let LeafAnswer::LeafAnswer { bindings, .. } = a {
+                let Some(result) = bindings.get("GoalDiffOut__").map(from_scryer) else {
+                    continue;
+                };
+                let inner = result.args().first().cloned().unwrap_or(Term::nil());
+                if result.is_functor(Sym::intern("err"), 1) {
+                    return Outcome::Error(canonical(&inner));
                 }
-                match list.map(|l| from_scryer(&l)).and_then(|l| l.list_items()) {
+                return match inner.list_items() {
                     Some(items) => Outcome::Answers(items.iter().map(canonical).collect()),
-                    None => Outcome::Answers(vec![]),
-                }
+                    None => Outcome::Error(format!("unexpected scryer result {result}")),
+                };
             }
         }
+        Outcome::Answers(vec![])
     }
 
     /// Runs a query and returns every leaf answer, or the error term it raised.

@@ -71,11 +71,7 @@ fn check_float(f: f64) -> KrResult<Num> {
 }
 
 fn to_int(f: f64) -> KrResult<Num> {
-    if f.is_nan()
-        || f.is_infinite()
-        || f >= 9.223_372_036_854_776e18
-        || f < -9.223_372_036_854_776e18
-    {
+    if !(-9.223_372_036_854_776e18..9.223_372_036_854_776e18).contains(&f) {
         Err(overflow())
     } else {
         Ok(Num::I(f as i64))

@@ -95,7 +95,7 @@ pub(crate) fn is_library(b: B) -> bool {
 pub(crate) fn library() -> &'static Knowledge {
     static LIB: OnceLock<Knowledge> = OnceLock::new();
     LIB.get_or_init(|| {
-        let mut k = Knowledge::default();
+        let mut k = Knowledge::blank();
         for (b, name, arities, _) in TABLE {
             for a in arities.iter() {
                 k.table
@@ -105,8 +105,10 @@ pub(crate) fn library() -> &'static Knowledge {
         for clause in super::prelude::clauses() {
             k.add(&clause);
         }
+        // Convert to library references first, so that body goals resolve to them.
+        let mut k = k.into_library();
         k.finish();
-        k.into_library()
+        k
     })
 }
 

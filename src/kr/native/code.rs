@@ -106,13 +106,17 @@ impl Code {
 
     /// Copies a heap term into this code (variables numbered through `vars`, by address).
     pub fn add_cell(&mut self, store: &Store, c: Cell, vars: &mut Vec<u32>) -> Cell {
-        match store.deref(c) {
-            c @ (Cell::Atom(_) | Cell::Int(_) | Cell::Flt(_)) => return c,
-            _ => {}
+        if let c @ (Cell::Atom(_) | Cell::Int(_) | Cell::Flt(_)) = store.deref(c) {
+            return c;
         }
         let mut root = UNSET;
         let mut work: Vec<(Option<usize>, Cell)> = vec![(None, c)];
+        let (mut steps, limit) = (0usize, store.step_limit());
         while let Some((slot, c)) = work.pop() {
+            if store.runaway(&mut steps, limit, &[c]) {
+                // The solver reports the cyclic term; leave a well-formed placeholder.
+                return Cell::Atom(wk::NIL);
+            }
             let v = match store.deref(c) {
                 Cell::Ref(a) => {
                     let n = match vars.iter().position(|x| *x == a) {
@@ -154,13 +158,14 @@ impl Code {
     #[inline]
     pub fn build(&self, store: &mut Store, root: Cell, slots: &mut [Cell]) -> Cell {
         match root {
-            Cell::Ref(n) => {
+            Cell::Ref(n) if (n as usize) < slots.len() => {
                 let s = &mut slots[n as usize];
                 if let Cell::Ref(u32::MAX) = *s {
                     *s = store.new_var();
                 }
                 *s
             }
+            Cell::Ref(_) => store.new_var(),
             Cell::Str(i) => store.new_str(self.strs[i as usize].clone()),
             Cell::Ptr(off) => {
                 let mut work = std::mem::take(&mut store.build_work);
@@ -192,13 +197,14 @@ impl Code {
         for i in 0..n {
             let a = p + 1 + i;
             let c = match self.cells[(off + 1 + i) as usize] {
-                Cell::Ref(k) => {
+                Cell::Ref(k) if (k as usize) < slots.len() => {
                     let s = &mut slots[k as usize];
                     if let Cell::Ref(u32::MAX) = *s {
                         *s = Cell::Ref(a);
                     }
                     *s
                 }
+                Cell::Ref(_) => Cell::Ref(a),
                 Cell::Str(j) => {
                     store.strs.push(self.strs[j as usize].clone());
                     Cell::Str(store.strs.len() as u32 - 1)

@@ -118,12 +118,11 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
                         }
                     }
                     Cell::Ref(_) => {
-                        let l = s.a(p, 0);
                         let y = s.a(p, 1);
                         Flow::Call(goal(
                             s,
                             "$length_enum",
-                            &[l, Cell::Int(items.len() as i64), y],
+                            &[end, Cell::Int(items.len() as i64), y],
                         ))
                     }
                     other => return Err(type_error(s, "integer", other, "length", 2)),
@@ -178,6 +177,15 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
         }
         B::Sort4 => {
             let key = int_arg(s, p, 0, "sort", 4)?;
+            if key < 0 {
+                return Err(super::builtins::domain_error(
+                    s,
+                    "not_less_than_zero",
+                    Cell::Int(key),
+                    "sort",
+                    4,
+                ));
+            }
             let order = match s.ad(p, 1) {
                 Cell::Atom(o) => o.name(),
                 Cell::Ref(_) => return Err(inst("sort", 4)),

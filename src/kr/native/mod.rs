@@ -1,10 +1,12 @@
 //! The native Prolog engine: a binding store (`store`), compiled clauses (`code`), the iterative
-//! solver (`machine`) and the built-ins (`builtins`, `arith`, `text`, `lists`, `output`,
-//! `prelude`).
+//! solver (`machine`) with its control constructs (`control`) and fact lookup (`facts`), and the
+//! built-ins (`builtins`, `arith`, `text`, `lists`, `output`, `prelude`).
 
 pub(crate) mod arith;
 pub(crate) mod builtins;
 pub(crate) mod code;
+pub(crate) mod control;
+pub(crate) mod facts;
 pub(crate) mod lists;
 pub(crate) mod machine;
 pub(crate) mod output;
@@ -61,6 +63,18 @@ impl NativeEngine {
         query: &Term,
         each: &mut dyn FnMut(Subst) -> bool,
     ) -> KrResult<usize> {
+        self.solve_inner(view, query, true, each)
+    }
+
+    /// [`NativeEngine::solve`]; with `convert` false, answers are not converted to terms (the
+    /// callback gets empty substitutions).
+    fn solve_inner(
+        &mut self,
+        view: &View,
+        query: &Term,
+        convert: bool,
+        each: &mut dyn FnMut(Subst) -> bool,
+    ) -> KrResult<usize> {
         let lib = builtins::library();
         let mut run = |m: &mut Machine| -> KrResult<usize> {
             let cx = Ctx {
@@ -78,7 +92,8 @@ impl NativeEngine {
             while s.next(first)? {
                 first = false;
                 n += 1;
-                if !each(s.answer()) {
+                let answer = if convert { s.answer()? } else { Subst::new() };
+                if !each(answer) {
                     break;
                 }
             }
@@ -90,19 +105,26 @@ impl NativeEngine {
         })
     }
 
+    /// For a ground query of a predicate that only facts define: how many times the fact is
+    /// present (the number of answers), without running the solver.
+    fn ground_fact_count(view: &View, query: &Term) -> Option<usize> {
+        let (name, arity) = query.functor()?;
+        if view.knowledge.table.contains_key(&(name, arity as u32)) || !query.is_ground() {
+            return None;
+        }
+        Some(
+            view.bases.iter().filter(|b| b.contains(query)).count()
+                + view.goal_facts.iter().filter(|f| *f == query).count(),
+        )
+    }
+
     /// True when `query` has at least one answer (stops after the first).
     fn first(&mut self, view: &View, query: &Term) -> KrResult<bool> {
-        // Fast path: a ground fact that no clause or built-in defines.
-        if query.is_ground() {
-            if let Some((name, arity)) = query.functor() {
-                if !view.knowledge.table.contains_key(&(name, arity as u32)) {
-                    return Ok(view.bases.iter().any(|b| b.contains(query))
-                        || view.goal_facts.iter().any(|f| f == query));
-                }
-            }
+        if let Some(n) = Self::ground_fact_count(view, query) {
+            return Ok(n > 0);
         }
         let mut found = false;
-        self.solve(view, query, &mut |_| {
+        self.solve_inner(view, query, false, &mut |_| {
             found = true;
             false
         })?;
@@ -118,6 +140,9 @@ impl Default for NativeEngine {
 
 impl Engine for NativeEngine {
     fn query(&mut self, view: &View, query: &Term) -> KrResult<Vec<Subst>> {
+        if let Some(n) = Self::ground_fact_count(view, query) {
+            return Ok(vec![Subst::new(); n]);
+        }
         let mut out = Vec::new();
         self.solve(view, query, &mut |s| {
             out.push(s);

@@ -11,9 +11,39 @@ use crate::term::print::format_float;
 use crate::term::{well_known as wk, Style, Sym, Term};
 use std::sync::Arc;
 
-/// A heap term as text in the given style.
-pub(crate) fn text(s: &Solver, c: Cell, style: Style) -> String {
-    s.m.st.to_term(c, &mut VarNames::new(&[])).to_text(style)
+/// Largest column or repeat count a format directive may use.
+const MAX_FORMAT_COUNT: i64 = 100_000;
+
+/// Deepest term the printer is asked to write (it recurses on nesting, except along list
+/// tails).
+const MAX_PRINT_DEPTH: usize = 10_000;
+
+/// A heap term as text in the given style (a resource error for terms nested too deeply to
+/// print safely).
+pub(crate) fn text(s: &Solver, c: Cell, style: Style) -> KrResult<String> {
+    if s.m.st.is_cyclic(c) {
+        return Err(super::machine::cyclic());
+    }
+    let mut stack = vec![(c, 1usize)];
+    while let Some((c, d)) = stack.pop() {
+        if d > MAX_PRINT_DEPTH {
+            return Err(KrError::iso(
+                Term::compound("resource_error", vec![Term::atom("print_depth")]),
+                None,
+            ));
+        }
+        if let Cell::Ptr(p) = s.m.st.deref(c) {
+            match s.m.st.heap[p as usize].fun() {
+                Some((f, 2)) if f == wk::DOT => {
+                    stack.push((s.a(p, 0), d + 1));
+                    stack.push((s.a(p, 1), d));
+                }
+                Some((_, n)) => stack.extend((0..n).map(|i| (s.a(p, i), d + 1))),
+                None => {}
+            }
+        }
+    }
+    Ok(s.m.st.to_term(c, &mut VarNames::new(&[])).to_text(style))
 }
 
 fn format_error(msg: &str) -> KrError {
@@ -54,7 +84,7 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
         if i < chars.len() && chars[i] == '*' {
             i += 1;
             match s.m.st.deref(next_arg("*")?) {
-                Cell::Int(n) => num = Some(n),
+                Cell::Int(n) => num = Some(n.min(MAX_FORMAT_COUNT)),
                 _ => return Err(format_error("~* needs an integer argument")),
             }
         } else if i + 1 < chars.len() && chars[i] == '`' {
@@ -66,7 +96,13 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
                 i += 1;
             }
             if i > st {
-                num = chars[st..i].iter().collect::<String>().parse().ok();
+                // Column and repeat counts are capped so a format string cannot exhaust memory.
+                num = chars[st..i]
+                    .iter()
+                    .collect::<String>()
+                    .parse::<i64>()
+                    .ok()
+                    .map(|n| n.min(MAX_FORMAT_COUNT));
             }
         }
         let Some(&d) = chars.get(i) else {
@@ -85,11 +121,11 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
             }
             'w' => {
                 let a = next_arg("w")?;
-                out.push_str(&text(s, a, Style::WRITE))
+                out.push_str(&text(s, a, Style::WRITE)?)
             }
             'p' | 'q' => {
                 let a = next_arg("q")?;
-                out.push_str(&text(s, a, Style::WRITEQ))
+                out.push_str(&text(s, a, Style::WRITEQ)?)
             }
             'a' => {
                 let a = next_arg("a")?;
@@ -256,14 +292,14 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
                 B::WriteCanonical => Style::CANONICAL,
                 _ => Style::WRITEQ,
             };
-            let mut t = text(s, s.a(p, last), style);
+            let mut t = text(s, s.a(p, last), style)?;
             if b == B::Writeln {
                 t.push('\n');
             }
             emit(s, &t);
         }
         B::WriteTerm => {
-            let t = text(s, s.a(p, if arity == 3 { 1 } else { 0 }), Style::WRITE);
+            let t = text(s, s.a(p, if arity == 3 { 1 } else { 0 }), Style::WRITE)?;
             emit(s, &t);
         }
         B::Nl => emit(s, "\n"),

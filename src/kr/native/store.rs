@@ -31,6 +31,8 @@ pub(crate) struct Store {
     /// Scratch stacks for [`super::code::Code`] (kept to avoid allocating per call).
     pub code_pairs: Vec<(Cell, Cell)>,
     pub build_work: Vec<(u32, u32)>,
+    /// Set when a traversal met a cyclic term and gave up; the solver turns it into an error.
+    pub cyclic: std::cell::Cell<bool>,
 }
 
 /// Names given to unbound variables when answers are converted back to terms.
@@ -67,9 +69,31 @@ impl VarNames {
 impl Store {
     /// Forgets everything (keeps the allocations).
     pub fn reset(&mut self) {
+        self.cyclic.set(false);
         self.heap.clear();
         self.trail.clear();
         self.strs.clear();
+    }
+
+    /// Step guard for traversals of `roots`: true (and the `cyclic` flag set) when the walk
+    /// ran far longer than any acyclic term allows and a root is indeed cyclic.
+    #[inline]
+    pub fn runaway(&self, steps: &mut usize, limit: usize, roots: &[Cell]) -> bool {
+        *steps += 1;
+        if *steps <= limit || !steps.is_multiple_of(4096) {
+            return false;
+        }
+        let cyc = roots.iter().any(|r| self.is_cyclic(*r));
+        if cyc {
+            self.cyclic.set(true);
+        }
+        cyc
+    }
+
+    /// A step limit for a traversal starting now.
+    #[inline]
+    pub fn step_limit(&self) -> usize {
+        self.heap.len() * 2 + 4096
     }
 
     /// Follows bound variables.
@@ -205,7 +229,11 @@ impl Store {
     }
 
     fn unify_pairs(&mut self, pairs: &mut Vec<(Cell, Cell)>) -> bool {
+        let (mut steps, limit) = (0usize, self.step_limit());
         while let Some((a, b)) = pairs.pop() {
+            if self.runaway(&mut steps, limit, &[a, b]) {
+                return false;
+            }
             let a = self.deref(a);
             let b = self.deref(b);
             match (a, b) {
@@ -252,8 +280,12 @@ impl Store {
 
     /// True when the variable at `v` occurs in `t`.
     pub fn occurs(&self, v: u32, t: Cell) -> bool {
+        let (mut steps, limit) = (0usize, self.step_limit());
         let mut stack = vec![t];
         while let Some(c) = stack.pop() {
+            if self.runaway(&mut steps, limit, &[t]) {
+                return true;
+            }
             match self.deref(c) {
                 Cell::Ref(a) if a == v => return true,
                 Cell::Ptr(p) => {
@@ -268,7 +300,7 @@ impl Store {
     }
 
     /// Copies a term onto the heap; variables are looked up in (and added to) `vars`.
-    pub fn from_term(&mut self, t: &Term, vars: &mut Vec<(Sym, Cell)>) -> Cell {
+    pub fn put_term(&mut self, t: &Term, vars: &mut Vec<(Sym, Cell)>) -> Cell {
         let root = self.heap.len() as u32;
         self.heap.push(Cell::Ref(root));
         let mut work: Vec<(u32, &Term)> = vec![(root, t)];
@@ -314,7 +346,11 @@ impl Store {
         }
         let mut work = vec![Work::Visit(c)];
         let mut out: Vec<Term> = Vec::new();
+        let (mut steps, limit) = (0usize, self.step_limit());
         while let Some(w) = work.pop() {
+            if self.runaway(&mut steps, limit, &[c]) {
+                return Term::Atom(wk::NIL);
+            }
             match w {
                 Work::Visit(c) => match self.deref(c) {
                     Cell::Ref(a) => out.push(Term::Var(names.name(a))),
@@ -357,8 +393,12 @@ impl Store {
         if !matches!((a, b), (Cell::Ptr(_), Cell::Ptr(_))) {
             return self.compare_shallow(a, b);
         }
+        let (mut steps, limit) = (0usize, self.step_limit());
         let mut stack = vec![(a, b)];
         while let Some((a, b)) = stack.pop() {
+            if self.runaway(&mut steps, limit, &[a, b]) {
+                return Ordering::Equal;
+            }
             let a = self.deref(a);
             let b = self.deref(b);
             let o = Self::order_class(a).cmp(&Self::order_class(b));
@@ -438,8 +478,12 @@ impl Store {
     /// True when the two terms are variants of each other (equal up to renaming of variables).
     pub fn variant(&self, a: Cell, b: Cell) -> bool {
         let mut map: Vec<(u32, u32)> = Vec::new();
+        let (mut steps, limit) = (0usize, self.step_limit());
         let mut stack = vec![(a, b)];
         while let Some((a, b)) = stack.pop() {
+            if self.runaway(&mut steps, limit, &[a, b]) {
+                return false;
+            }
             match (self.deref(a), self.deref(b)) {
                 (Cell::Ref(x), Cell::Ref(y)) => {
                     match map.iter().find(|(p, q)| *p == x || *q == y) {
@@ -480,7 +524,11 @@ impl Store {
         let root = self.heap.len() as u32;
         self.heap.push(Cell::Ref(root));
         let mut work = vec![(root, c)];
+        let (mut steps, limit) = (0usize, self.step_limit());
         while let Some((slot, c)) = work.pop() {
+            if self.runaway(&mut steps, limit, &[c]) {
+                return self.heap[root as usize];
+            }
             let v = match self.deref(c) {
                 Cell::Ref(a) => match map.iter().find(|(x, _)| *x == a) {
                     Some((_, c)) => *c,
@@ -510,14 +558,15 @@ impl Store {
 
     /// The distinct unbound variables of a term, in depth-first left-to-right order.
     pub fn term_vars(&self, c: Cell, out: &mut Vec<u32>) {
+        let (mut steps, limit) = (0usize, self.step_limit());
         let mut stack = vec![c];
         while let Some(c) = stack.pop() {
+            if self.runaway(&mut steps, limit, &[c]) {
+                return;
+            }
             match self.deref(c) {
-                Cell::Ref(a) => {
-                    if !out.contains(&a) {
-                        out.push(a)
-                    }
-                }
+                Cell::Ref(a) if !out.contains(&a) => out.push(a),
+                Cell::Ref(_) => {}
                 Cell::Ptr(p) => {
                     if let Cell::Fun(_, n) = self.heap[p as usize] {
                         stack.extend((0..n).rev().map(|i| self.arg(p, i)));
@@ -528,10 +577,35 @@ impl Store {
         }
     }
 
+    /// True when the term is cyclic (possible without the occurs check, e.g. `X = f(X)`):
+    /// an acyclic term is never deeper than the heap has cells.
+    pub fn is_cyclic(&self, c: Cell) -> bool {
+        if !matches!(self.deref(c), Cell::Ptr(_)) {
+            return false;
+        }
+        let limit = self.heap.len() + 1;
+        let mut stack = vec![(c, 1usize)];
+        while let Some((c, d)) = stack.pop() {
+            if d > limit {
+                return true;
+            }
+            if let Cell::Ptr(p) = self.deref(c) {
+                if let Cell::Fun(_, n) = self.heap[p as usize] {
+                    stack.extend((0..n).map(|i| (self.arg(p, i), d + 1)));
+                }
+            }
+        }
+        false
+    }
+
     /// True when the term has no unbound variables.
     pub fn is_ground(&self, c: Cell) -> bool {
+        let (mut steps, limit) = (0usize, self.step_limit());
         let mut stack = vec![c];
         while let Some(c) = stack.pop() {
+            if self.runaway(&mut steps, limit, &[c]) {
+                return false;
+            }
             match self.deref(c) {
                 Cell::Ref(_) => return false,
                 Cell::Ptr(p) => {

@@ -41,6 +41,36 @@ pub(crate) fn text_of(s: &Solver, c: Cell) -> Option<String> {
     }
 }
 
+/// Why a code or char list argument has no text: the ISO error for its first bad element.
+fn list_text_error(s: &Solver, l: Cell, as_codes: bool, name: &str) -> KrError {
+    let (items, end) = s.m.st.list_items(l);
+    for it in items {
+        match s.m.st.deref(it) {
+            Cell::Ref(_) => return inst(name, 2),
+            Cell::Int(c) if u32::try_from(c).ok().and_then(char::from_u32).is_some() => {}
+            Cell::Int(_) => {
+                return KrError::iso(
+                    Term::compound("representation_error", vec![Term::atom("character_code")]),
+                    Some((Sym::intern(name), 2)),
+                )
+            }
+            Cell::Atom(a) if a.name().chars().count() == 1 => {}
+            other => {
+                let ty = if as_codes && !matches!(other, Cell::Atom(_)) {
+                    "integer"
+                } else {
+                    "character"
+                };
+                return type_error(s, ty, other, name, 2);
+            }
+        }
+    }
+    match end {
+        Cell::Ref(_) => inst(name, 2),
+        _ => type_error(s, "list", l, name, 2),
+    }
+}
+
 /// Parses a Prolog number (`12`, `-3`, `2.5e3`, `0x1f`, `0'a`).
 pub(crate) fn parse_number(text: &str) -> Option<Cell> {
     let t = text.trim();
@@ -276,7 +306,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
             } else {
                 let l = s.ad(p, 1);
                 let Some(t) = text_of(s, l) else {
-                    return Err(inst(name, 2));
+                    return Err(list_text_error(s, l, as_codes, name));
                 };
                 let v = match kind {
                     0 => atom(&t),
@@ -485,7 +515,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
                 ("term_string", Kind::Str)
             };
             if !is_var(s, p, 0) {
-                let t = super::output::text(s, s.a(p, 0), Style::WRITEQ);
+                let t = super::output::text(s, s.a(p, 0), Style::WRITEQ)?;
                 let v = make(s, k, &t);
                 let y = s.a(p, 1);
                 unify_flow(s, y, v)
@@ -533,7 +563,7 @@ fn read_term(
             )
         })?;
     let mut vars = Vec::new();
-    let c = s.m.st.from_term(&t.term, &mut vars);
+    let c = s.m.st.put_term(&t.term, &mut vars);
     let named = vars
         .into_iter()
         .filter(|(v, _)| !v.name().starts_with('_'))

@@ -94,6 +94,14 @@ impl Builder<'_> {
                             "this" => SelectorKind::This,
                             "some" => SelectorKind::Some,
                             "someother" => SelectorKind::SomeOther,
+                            // `send((a, b), p)`: several receivers.
+                            _ if receiver.starts_with('(') && receiver.ends_with(')') => {
+                                let inner = self.src[..comma].rfind(')').unwrap_or(comma);
+                                let open = content.start
+                                    + (self.src[content.clone()].len()
+                                        - self.src[content.clone()].trim_start().len());
+                                SelectorKind::Agents(self.term_list(open + 1..inner))
+                            }
                             _ => SelectorKind::Agents(vec![t]),
                         };
                         self.warning(
@@ -146,7 +154,7 @@ impl Builder<'_> {
         sections: Vec<SectionItem>,
         span: Span,
     ) -> Module {
-        let options = self.options(&kind, written);
+        let options = self.options(written);
         let mut m = Module {
             kind,
             options,
@@ -213,7 +221,7 @@ impl Builder<'_> {
     }
 
     /// Reads `[exit=..., focus=...]`: unknown keys and duplicates are warnings, unknown values errors.
-    fn options(&mut self, kind: &ModuleKind, written: Vec<ModuleOption>) -> ModuleOptions {
+    fn options(&mut self, written: Vec<ModuleOption>) -> ModuleOptions {
         let mut o = ModuleOptions::default();
         for opt in &written {
             let (key, value) = (opt.key.name.name(), opt.value.name.name());
@@ -268,7 +276,6 @@ impl Builder<'_> {
                 }
             }
         }
-        let _ = kind;
         o.written = written;
         o
     }

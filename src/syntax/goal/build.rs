@@ -9,8 +9,11 @@ use crate::syntax::lexer::{kr, Tok};
 use crate::syntax::prolog::Reader;
 use crate::term::{Sym, Term};
 use lalrpop_util::ErrorRecovery;
+use std::cell::Cell;
+use std::rc::Rc;
 
-/// A top-level item of a `.goal` file.
+/// A top-level item of a `.goal` file (short-lived: moved into the program at once).
+#[allow(clippy::large_enum_variant)]
 pub enum TopItem {
     Module(Module),
     Import(Import),
@@ -45,6 +48,8 @@ pub struct Builder<'s> {
     pub file: String,
     reader: Reader,
     pub diagnostics: Vec<Diagnostic>,
+    /// Shared with the lexer: set when there are too many errors to go on.
+    pub give_up: Rc<Cell<bool>>,
 }
 
 /// True when `text` holds only whitespace and comments.
@@ -83,6 +88,7 @@ impl<'s> Builder<'s> {
             file: file.to_string(),
             reader: Reader::new(file),
             diagnostics: Vec::new(),
+            give_up: Rc::new(Cell::new(false)),
         }
     }
 
@@ -114,8 +120,13 @@ impl<'s> Builder<'s> {
 
     /// Records a syntax error the parser recovered from.
     pub fn recover(&mut self, e: ErrorRecovery<usize, Tok, Diagnostic>) {
-        let d = syntax_error(e.error, self.src, &self.file);
-        self.diagnostics.push(d);
+        // Past the cap, later errors are mostly consequences of earlier ones.
+        if self.diagnostics.len() < super::MAX_DIAGNOSTICS {
+            let d = syntax_error(e.error, self.src, &self.file);
+            self.diagnostics.push(d);
+        } else {
+            self.give_up.set(true);
+        }
     }
 
     /// The name written at `span`.

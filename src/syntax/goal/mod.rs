@@ -19,10 +19,14 @@ lalrpop_mod!(
     "/goal.rs"
 );
 
+/// At most this many diagnostics are reported per file (then one saying there were more).
+pub const MAX_DIAGNOSTICS: usize = 100;
+
 /// Parses the text of a `.goal` file named `file`.
 pub fn parse_goal(file: &str, src: &str) -> (AgentProgram, Vec<Diagnostic>) {
     let mut lexer = Lexer::new(src, file);
     let mut b = Builder::new(src, file);
+    lexer.give_up = b.give_up.clone();
     let result = grammar::AgentParser::new().parse(&mut b, &mut lexer);
     let mut diags = std::mem::take(&mut b.diagnostics);
     let items = match result {
@@ -38,6 +42,19 @@ pub fn parse_goal(file: &str, src: &str) -> (AgentProgram, Vec<Diagnostic>) {
     }
     diags.extend(lexer.diagnostics);
     diags.sort_by_key(|d| (d.span.start, d.span.end));
+    if diags.len() > MAX_DIAGNOSTICS {
+        let at = diags[MAX_DIAGNOSTICS].span.clone();
+        diags.truncate(MAX_DIAGNOSTICS);
+        diags.push(
+            Diagnostic::error(
+                "E0033",
+                format!("too many problems: only the first {MAX_DIAGNOSTICS} are reported"),
+                file,
+                at,
+            )
+            .with_hint("fix these and check again"),
+        );
+    }
     let mut program = AgentProgram {
         file: file.to_string(),
         modules: Vec::new(),

@@ -10,9 +10,14 @@ pub use token::Tok;
 use crate::diag::Diagnostic;
 use kr::ScanError;
 use logos::Logos;
+use std::cell::Cell;
+use std::rc::Rc;
 
 /// Deepest `{ }` nesting of GOAL-level blocks accepted (modules, programs, nested rule blocks).
 pub const MAX_BLOCK_DEPTH: usize = 100;
+
+/// After this many unexpected characters the rest of the file is skipped.
+pub const MAX_LEX_ERRORS: usize = 50;
 
 /// The lexer error type seen by the parser; the lexer reports problems as diagnostics instead
 /// and never yields it.
@@ -36,7 +41,6 @@ enum After {
 pub struct Lexer<'s> {
     src: &'s str,
     file: String,
-    inner: logos::Lexer<'s, Tok>,
     /// Byte position where the next token is searched.
     pos: usize,
     after: After,
@@ -45,6 +49,9 @@ pub struct Lexer<'s> {
     pub diagnostics: Vec<Diagnostic>,
     /// True once input had to be abandoned (the parser's end-of-file error is then noise).
     pub stopped_early: bool,
+    /// Set by the parser's builder when it has seen too many errors: the lexer then ends the
+    /// token stream so that a hopeless file costs no more time.
+    pub give_up: Rc<Cell<bool>>,
 }
 
 impl<'s> Lexer<'s> {
@@ -53,12 +60,12 @@ impl<'s> Lexer<'s> {
         Lexer {
             src,
             file: file.to_string(),
-            inner: Tok::lexer(src),
             pos: 0,
             after: After::Plain,
             depth: 0,
             diagnostics: Vec::new(),
             stopped_early: false,
+            give_up: Rc::new(Cell::new(false)),
         }
     }
 
@@ -181,10 +188,11 @@ impl<'s> Lexer<'s> {
             }
             // A logos token starting at self.pos.
             let rest = &self.src[self.pos..];
-            self.inner = Tok::lexer(rest);
+            // A fresh logos lexer on the rest: KR spans and comments are skipped by hand above.
+            let mut inner = Tok::lexer(rest);
             let start = self.pos;
-            let tok = self.inner.next()?;
-            let span = self.inner.span();
+            let tok = inner.next()?;
+            let span = inner.span();
             let end = start + span.end;
             self.pos = end;
             match tok {
@@ -196,12 +204,16 @@ impl<'s> Lexer<'s> {
                     if ch == '"' || ch == '\'' {
                         return self.scan_error(ScanError::UnterminatedQuote { start, quote: ch });
                     }
-                    self.diagnostics.push(Diagnostic::error(
+                    let d = Diagnostic::error(
                         "E0009",
                         format!("unexpected character `{}`", ch.escape_debug()),
                         self.file.clone(),
                         start..end,
-                    ));
+                    );
+                    if self.diagnostics.len() >= MAX_LEX_ERRORS {
+                        return self.stop(d.with_hint("too many unexpected characters: giving up"));
+                    }
+                    self.diagnostics.push(d);
                 }
             }
         }
@@ -249,6 +261,10 @@ impl Iterator for Lexer<'_> {
     type Item = Result<(usize, Tok, usize), LexError>;
 
     fn next(&mut self) -> Option<Self::Item> {
+        if self.give_up.get() {
+            self.stopped_early = true;
+            return None;
+        }
         self.next_token().map(Ok)
     }
 }

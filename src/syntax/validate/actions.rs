@@ -61,7 +61,7 @@ fn specs(ctx: &mut Ctx<'_>) {
                 "actions and modules share one namespace; rename one of them",
             );
         }
-        if !used.contains(&(name.clone(), arity)) {
+        if !ctx.module_file && !used.contains(&(name.clone(), arity)) {
             ctx.warning(
                 "W0101",
                 format!("action `{name}/{arity}` is never used"),
@@ -142,7 +142,7 @@ fn calls(ctx: &mut Ctx<'_>) {
             || ctx.module_index.contains_key(&key)
             || ctx.imported.specs.contains(&key)
             || ctx.imported.modules.contains(&key);
-        if !known {
+        if !known && !ctx.module_file {
             let mut arities: Vec<usize> = ctx
                 .spec_index
                 .keys()

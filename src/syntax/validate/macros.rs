@@ -31,7 +31,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
         for d in defs {
             well_formed(ctx, d);
         }
-        if !uses.contains(&(name.clone(), *arity)) {
+        if !ctx.module_file && !uses.contains(&(name.clone(), *arity)) {
             ctx.warning(
                 "W0103",
                 format!("macro `{name}/{arity}` is never used"),
@@ -47,7 +47,10 @@ pub fn check(ctx: &mut Ctx<'_>) {
         let Some(key) = macro_use_key(l) else {
             continue;
         };
-        if ctx.macro_index.contains_key(&key) || ctx.imported.macros.contains(&key) {
+        if ctx.module_file
+            || ctx.macro_index.contains_key(&key)
+            || ctx.imported.macros.contains(&key)
+        {
             continue;
         }
         let others: Vec<String> = ctx

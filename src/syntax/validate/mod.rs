@@ -51,6 +51,9 @@ pub struct Ctx<'a> {
     /// Clauses of imported `.pl` files (knowledge).
     pub imported_knowledge: Vec<Located>,
     pub diags: Vec<Diagnostic>,
+    /// True when checking a `.mod2g` file on its own: checks that need the whole program
+    /// (undefined names, unused definitions, a main module) are skipped.
+    pub module_file: bool,
 }
 
 impl<'a> Ctx<'a> {
@@ -156,6 +159,26 @@ pub fn validate_prolog(clauses: &[Located], file: &str) -> Vec<Diagnostic> {
 /// Validates `program`; `base_dir` is the directory that `#import` paths are relative to (no
 /// file checks when `None`). Returns every error and warning, sorted by position.
 pub fn validate(program: &AgentProgram, base_dir: Option<&Path>) -> Vec<Diagnostic> {
+    run(program, base_dir, false)
+}
+
+/// Validates a `.mod2g` module file on its own: the checks that do not need the program that
+/// imports it.
+pub fn validate_module_file(
+    module: &Module,
+    file: &str,
+    base_dir: Option<&Path>,
+) -> Vec<Diagnostic> {
+    let program = AgentProgram {
+        file: file.to_string(),
+        modules: vec![module.clone()],
+        imports: Vec::new(),
+        span: module.span.clone(),
+    };
+    run(&program, base_dir, true)
+}
+
+fn run(program: &AgentProgram, base_dir: Option<&Path>, module_file: bool) -> Vec<Diagnostic> {
     let mut diags = Vec::new();
     let mut imported_modules: Vec<Module> = Vec::new();
     let mut imported_knowledge: Vec<Located> = Vec::new();
@@ -206,6 +229,7 @@ pub fn validate(program: &AgentProgram, base_dir: Option<&Path>) -> Vec<Diagnost
         imported_knowledge,
         imported: Imported::default(),
         diags,
+        module_file,
     };
     for m in &imported_modules {
         ctx.imported.modules.extend(module_key(m));

@@ -10,7 +10,9 @@ pub fn check(ctx: &mut Ctx<'_>) {
     let has_main_or_event = modules
         .iter()
         .any(|m| matches!(m.kind, ModuleKind::Main | ModuleKind::Event));
-    if !has_main_or_event && !modules.is_empty() {
+    if ctx.module_file {
+        // A module file is imported into a program that has the main/event modules.
+    } else if !has_main_or_event && !modules.is_empty() {
         let span = modules[0].head_span.clone();
         ctx.error(
             "E0101",
@@ -127,6 +129,9 @@ pub fn check(ctx: &mut Ctx<'_>) {
         }
     }
     // Unused user modules (never called by a rule).
+    if ctx.module_file {
+        return;
+    }
     let called: std::collections::BTreeSet<_> = ctx
         .actions()
         .into_iter()

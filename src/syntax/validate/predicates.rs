@@ -160,7 +160,8 @@ pub fn check(ctx: &mut Ctx<'_>) {
     };
     let mut reported: std::collections::BTreeSet<&Key> = Default::default();
     for (k, span) in &u.queries {
-        if !defined(k) && reported.insert(k) {
+        // In a module file, definitions may be in the importing program.
+        if !ctx.module_file && !defined(k) && reported.insert(k) {
             ctx.error(
                 "E0121",
                 format!(
@@ -184,6 +185,9 @@ pub fn check(ctx: &mut Ctx<'_>) {
                 "knowledge is static and beliefs change: keep each predicate in one of them",
             );
         }
+    }
+    if ctx.module_file {
+        return; // queries may be in the importing program
     }
     let queried = |k: &Key| u.queried.contains_key(k);
     for (k, span) in u.knowledge.iter().chain(u.beliefs.iter()) {

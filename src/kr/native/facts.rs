@@ -1,0 +1,195 @@
+//! Answering goals from facts: the agent's fact bases (indexed scans on the first two
+//! arguments) and the facts of one goal (a scanned slice), unified without copying the facts.
+
+use super::code::Key;
+use super::machine::{Alt, Solver};
+use super::store::Cell;
+use crate::kr::error::KrResult;
+use crate::kr::factbase::Scan;
+use crate::term::{Sym, Term};
+
+impl<'a> Solver<'a, '_> {
+    /// Starts scanning fact source `stage` (a fact base, or the goal facts after the last base).
+    pub(crate) fn start_scan(&self, stage: u32, _g: Cell, name: Sym, arity: u32, p: u32) -> Scan {
+        if (stage as usize) < self.cx.bases.len() {
+            let (k1, k2) = if arity == 0 {
+                (None, None)
+            } else {
+                (
+                    Key::of_cell(&self.m.st, self.a(p, 0)),
+                    if arity > 1 {
+                        Key::of_cell(&self.m.st, self.a(p, 1))
+                    } else {
+                        None
+                    },
+                )
+            };
+            self.cx.bases[stage as usize].scan(name, arity, k1, k2)
+        } else {
+            Scan { links: 0, next: 0 }
+        }
+    }
+
+    /// The next fact that may match `g`, advancing through the sources.
+    pub(crate) fn next_fact(&self, g: Cell, stage: &mut u32, scan: &mut Scan) -> Option<&'a Term> {
+        let (name, arity, p) = match g {
+            Cell::Atom(s) => (s, 0, 0),
+            Cell::Ptr(p) => match self.m.st.heap[p as usize] {
+                Cell::Fun(s, n) => (s, n, p),
+                _ => return None,
+            },
+            _ => return None,
+        };
+        let nb = self.cx.bases.len() as u32;
+        loop {
+            if *stage < nb {
+                if let Some(t) = self.cx.bases[*stage as usize].advance(scan) {
+                    return Some(t);
+                }
+                *stage += 1;
+                *scan = self.start_scan(*stage, g, name, arity, p);
+            } else {
+                let facts = self.cx.goal_facts;
+                while (scan.next as usize) < facts.len() {
+                    let t = &facts[scan.next as usize];
+                    scan.next += 1;
+                    if t.functor() == Some((name, arity as usize)) {
+                        return Some(t);
+                    }
+                }
+                return None;
+            }
+        }
+    }
+
+    pub(crate) fn try_facts(
+        &mut self,
+        goal: Cell,
+        mut stage: u32,
+        mut scan: Scan,
+        b: u32,
+        mut has_choice: bool,
+        next: u32,
+    ) -> KrResult<bool> {
+        let mut cand = self.next_fact(goal, &mut stage, &mut scan);
+        loop {
+            let Some(t) = cand else {
+                if has_choice {
+                    self.m.cps.truncate(b as usize);
+                }
+                return Ok(false);
+            };
+            let (s0, sc0) = (stage, scan);
+            let after = self.next_fact(goal, &mut stage, &mut scan);
+            if after.is_some() {
+                let alt = Alt::Facts {
+                    goal,
+                    stage: s0,
+                    scan: sc0,
+                };
+                if has_choice {
+                    self.m.cps[b as usize].alt = alt;
+                } else {
+                    self.push_choice(alt, next, 0, 0);
+                    has_choice = true;
+                }
+            } else if has_choice {
+                self.m.cps.truncate(b as usize);
+                has_choice = false;
+            }
+            let (hm, tm, sm) = (
+                self.m.st.heap.len(),
+                self.m.st.trail.len(),
+                self.m.st.strs.len(),
+            );
+            if self.unify_fact(goal, t) {
+                self.cont = next;
+                return Ok(true);
+            }
+            self.m.st.undo(tm);
+            self.m.st.heap.truncate(hm);
+            self.m.st.strs.truncate(sm);
+            cand = after;
+        }
+    }
+
+    /// Unifies a heap term with a stored fact without copying the fact (only the parts bound
+    /// to variables are copied).
+    pub fn unify_fact(&mut self, c: Cell, t: &Term) -> bool {
+        // Fast path: the arguments of a fact are usually atomic.
+        if let (Cell::Ptr(p), Term::Compound(k)) = (self.m.st.deref(c), t) {
+            if self.m.st.heap[p as usize].fun() != Some((k.name, k.args.len() as u32)) {
+                return false;
+            }
+            for (i, a) in k.args.iter().enumerate() {
+                if !self.unify_fact_arg(self.a(p, i as u32), a) {
+                    return false;
+                }
+            }
+            return true;
+        }
+        self.unify_fact_arg(c, t)
+    }
+
+    pub(crate) fn unify_fact_arg(&mut self, c: Cell, t: &Term) -> bool {
+        match (self.m.st.deref(c), t) {
+            (Cell::Atom(x), Term::Atom(y)) => return x == *y,
+            (Cell::Int(x), Term::Int(y)) => return x == *y,
+            (Cell::Ref(a), Term::Atom(y)) => {
+                self.m.st.bind(a, Cell::Atom(*y));
+                return true;
+            }
+            (Cell::Ref(a), Term::Int(y)) => {
+                self.m.st.bind(a, Cell::Int(*y));
+                return true;
+            }
+            _ => {}
+        }
+        let mut work: Vec<(Cell, &Term)> = vec![(c, t)];
+        while let Some((c, t)) = work.pop() {
+            let c = self.m.st.deref(c);
+            match (c, t) {
+                (_, Term::Var(_)) => {}
+                (Cell::Ref(a), _) => {
+                    let v = match t {
+                        Term::Atom(s) => Cell::Atom(*s),
+                        Term::Int(i) => Cell::Int(*i),
+                        Term::Float(f) => Cell::Flt(f.0),
+                        _ => self.m.st.put_term(t, &mut Vec::new()),
+                    };
+                    self.m.st.bind(a, v);
+                }
+                (Cell::Atom(x), Term::Atom(y)) => {
+                    if x != *y {
+                        return false;
+                    }
+                }
+                (Cell::Int(x), Term::Int(y)) => {
+                    if x != *y {
+                        return false;
+                    }
+                }
+                (Cell::Flt(x), Term::Float(y)) => {
+                    if crate::term::Float(x) != *y {
+                        return false;
+                    }
+                }
+                (Cell::Str(i), Term::Str(s)) => {
+                    if *self.m.st.strs[i as usize] != **s {
+                        return false;
+                    }
+                }
+                (Cell::Ptr(p), Term::Compound(k)) => {
+                    if self.m.st.heap[p as usize].fun() != Some((k.name, k.args.len() as u32)) {
+                        return false;
+                    }
+                    for (i, a) in k.args.iter().enumerate() {
+                        work.push((self.a(p, i as u32), a));
+                    }
+                }
+                _ => return false,
+            }
+        }
+        true
+    }
+}
