@@ -7,6 +7,13 @@ use codespan_reporting::term::{self, termcolor::NoColor};
 use serde::Serialize;
 use std::ops::Range;
 
+/// Files larger than this are shown with a window of the offending line only.
+const LARGE_FILE: usize = 1_000_000;
+/// Lines longer than this are shown as a window around the span.
+const LONG_LINE: usize = 1_000;
+/// Characters of context shown on each side of the span in a window.
+const WINDOW: usize = 60;
+
 /// A byte range in a source file.
 pub type Span = Range<usize>;
 
@@ -86,10 +93,19 @@ impl Diagnostic {
 
     /// Renders the diagnostic like rustc, with the source line and a caret under the span.
     pub fn render(&self, source: &str) -> String {
-        let mut files = SimpleFiles::new();
-        let id = files.add(self.file.as_str(), source);
         let start = clamp_to_char_boundary(source, self.span.start.min(source.len()));
         let end = clamp_to_char_boundary(source, self.span.end.clamp(start, source.len()));
+        let line_start = source[..start].rfind('\n').map_or(0, |i| i + 1);
+        let line_end = source[start..]
+            .find('\n')
+            .map_or(source.len(), |i| start + i);
+        // Very long lines and huge files would flood the terminal and cost time per diagnostic:
+        // show a window of the line instead.
+        if source.len() > LARGE_FILE || line_end - line_start > LONG_LINE {
+            return self.render_window(source, start, end, line_start, line_end);
+        }
+        let mut files = SimpleFiles::new();
+        let id = files.add(self.file.as_str(), source);
         let severity = match self.severity {
             Severity::Error => CsSeverity::Error,
             Severity::Warning => CsSeverity::Warning,
@@ -104,18 +120,47 @@ impl Diagnostic {
         let mut out = NoColor::new(Vec::new());
         let config = term::Config::default();
         if term::emit(&mut out, &config, &files, &d).is_err() {
-            let (l, c) = self.line_col(source);
-            return format!(
-                "{}[{}]: {}\n  --> {}:{}:{}\n",
-                self.severity_word(),
-                self.code,
-                self.message,
-                self.file,
-                l,
-                c
-            );
+            return self.render_window(source, start, end, line_start, line_end);
         }
         String::from_utf8_lossy(&out.into_inner()).into_owned()
+    }
+
+    /// The rustc layout with at most [`WINDOW`] characters of the source line on each side of
+    /// the span start.
+    fn render_window(
+        &self,
+        source: &str,
+        start: usize,
+        end: usize,
+        line_start: usize,
+        line_end: usize,
+    ) -> String {
+        let (line, col) = self.line_col(source);
+        let before: Vec<char> = source[line_start..start].chars().collect();
+        let skip = before.len().saturating_sub(WINDOW);
+        let shown_before: String = before[skip..].iter().collect();
+        let after: String = source[start..line_end].chars().take(WINDOW).collect();
+        let caret_len = source[start..end.min(line_end).max(start)]
+            .chars()
+            .count()
+            .clamp(1, WINDOW);
+        let prefix = if skip > 0 { "..." } else { "" };
+        let lineno = line.to_string();
+        let pad = " ".repeat(lineno.len());
+        let mut out = format!(
+            "{}[{}]: {}\n{pad}--> {}:{line}:{col}\n{pad} |\n{lineno} | {prefix}{shown_before}{after}\n{pad} | {}{}\n",
+            self.severity_word(),
+            self.code,
+            self.message,
+            self.file,
+            " ".repeat(prefix.len() + shown_before.chars().count()),
+            "^".repeat(caret_len),
+        );
+        if let Some(h) = &self.hint {
+            out.push_str(&format!("{pad} = help: {h}\n"));
+        }
+        out.push('\n');
+        out
     }
 
     /// One JSON object (no trailing newline) for editors and graders.
@@ -182,6 +227,16 @@ mod tests {
         assert!(text.contains("^^^"), "{text}");
         assert!(text.contains("help: add an action spec"), "{text}");
         assert_eq!(d.line_col(src), (2, 26));
+    }
+
+    #[test]
+    fn long_lines_show_a_window_with_a_caret() {
+        let src = format!("{}bad{}", "x ".repeat(5_000), " y".repeat(5_000));
+        let d = Diagnostic::error("E0001", "bad token", "big.goal", 10_000..10_003);
+        let text = d.render(&src);
+        assert!(text.contains("big.goal:1:10001"), "{text}");
+        assert!(text.contains("...") && text.contains("^^^"), "{text}");
+        assert!(text.len() < 1_000, "{}", text.len());
     }
 
     #[test]

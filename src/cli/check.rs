@@ -1,6 +1,5 @@
 //! `goal check FILE... [--format json]`: parse and validate files, print diagnostics.
 
-use goal::diag::Diagnostic;
 use goal::syntax::check::{check_path_with_agents, FileReport};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -42,7 +41,7 @@ pub fn main(args: Args) -> ExitCode {
                 warnings += 1;
             }
             match args.format {
-                Format::Text => print!("{}", render(d, &r.source)),
+                Format::Text => print!("{}", d.render(&r.source)),
                 Format::Json => println!("{}", d.to_json(&r.source)),
             }
         }
@@ -59,30 +58,6 @@ pub fn main(args: Args) -> ExitCode {
     } else {
         ExitCode::SUCCESS
     }
-}
-
-/// Renders like rustc; for huge files or very long lines (where printing the source line would
-/// flood the terminal and cost time per diagnostic) only the message and the position.
-fn render(d: &Diagnostic, source: &str) -> String {
-    let start = d.span.start.min(source.len());
-    let line_start = source[..start].rfind('\n').map_or(0, |i| i + 1);
-    let line_end = source[start..]
-        .find('\n')
-        .map_or(source.len(), |i| start + i);
-    if source.len() <= 1_000_000 && line_end - line_start <= 1_000 {
-        return d.render(source);
-    }
-    let (line, col) = d.line_col(source);
-    let word = if d.is_error() { "error" } else { "warning" };
-    let mut out = format!(
-        "{word}[{}]: {}\n  --> {}:{line}:{col}\n",
-        d.code, d.message, d.file
-    );
-    if let Some(h) = &d.hint {
-        out.push_str(&format!("  = help: {h}\n"));
-    }
-    out.push('\n');
-    out
 }
 
 fn plural(n: usize) -> &'static str {

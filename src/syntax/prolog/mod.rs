@@ -23,6 +23,10 @@ lalrpop_mod!(
 /// Diagnostic code of Prolog syntax errors.
 pub const SYNTAX_ERROR: &str = "E0010";
 
+/// A clause list stops being read after this many syntax errors: past that point the text is
+/// almost certainly not Prolog, and reporting more only costs time.
+pub const MAX_CLAUSE_ERRORS: usize = 100;
+
 /// Byte spans of a term and, for compound terms, of each argument (list cells: head and tail).
 #[derive(Clone, Debug, PartialEq, Eq, Default)]
 pub struct TermSpans {
@@ -102,6 +106,20 @@ impl Reader {
         let mut errors = Vec::new();
         let mut chunk: Vec<Spanned> = Vec::new();
         for (l, tok, r) in tokens {
+            if errors.len() >= MAX_CLAUSE_ERRORS {
+                errors.push(
+                    Diagnostic::error(
+                        SYNTAX_ERROR,
+                        format!(
+                            "too many syntax errors; stopped reading after {MAX_CLAUSE_ERRORS}"
+                        ),
+                        self.file.clone(),
+                        l..r,
+                    )
+                    .with_hint("fix the errors above first"),
+                );
+                return (clauses, errors);
+            }
             if tok != Tok::End {
                 chunk.push((l, tok, r));
                 continue;

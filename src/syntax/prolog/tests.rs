@@ -96,6 +96,14 @@ fn clauses_recover_after_errors() {
 }
 
 #[test]
+fn clause_errors_are_capped() {
+    let text = "a :- . ".repeat(10_000);
+    let (_, errors) = Reader::new("t").clauses(&text, 0);
+    assert_eq!(errors.len(), MAX_CLAUSE_ERRORS + 1);
+    assert!(errors.last().unwrap().message.contains("too many"));
+}
+
+#[test]
 fn term_lists_are_arguments() {
     let ts = Reader::new("t").term_list("X, f(Y), [a]", 0).unwrap();
     assert_eq!(ts.len(), 3);
