@@ -4,6 +4,7 @@
 //! for Teams environment (`bw4t`). See ARCHITECTURE.md for a map.
 
 pub mod agent;
+pub mod bench;
 pub mod bw4t;
 pub mod diag;
 pub mod env;

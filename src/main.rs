@@ -23,6 +23,8 @@ enum Command {
     Test(cli::test::Args),
     /// Load Prolog files and print the answers of a query (or read queries from standard input).
     Prolog(cli::prolog::Args),
+    /// Run a benchmark (token rings, reasoning, percept load, idle agents) and print its figures.
+    Bench(cli::bench::Args),
 }
 
 fn main() -> ExitCode {
@@ -32,5 +34,6 @@ fn main() -> ExitCode {
         Command::Run(args) => cli::run::main(args),
         Command::Prolog(args) => cli::prolog::main(args),
         Command::Test(args) => cli::test::main(args),
+        Command::Bench(args) => cli::bench::main(args),
     }
 }

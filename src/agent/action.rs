@@ -81,25 +81,26 @@ impl Core {
         }
     }
 
-    /// Records an `ActionPerformed` event built only when the trace records changes.
+    /// Counts a performed action; builds its term only when the trace records changes or a
+    /// watcher (`goal test`) observes actions.
     pub fn done_with(&mut self, action: impl FnOnce() -> Term) {
         if self.level >= TraceLevel::Changes || self.watcher.is_some() {
             let t = action();
             self.watch(Observed::Action(&t));
             if self.level >= TraceLevel::Changes {
+                // `event` counts the action.
                 self.event(Event::ActionPerformed {
                     action: t.to_string(),
                 });
+                return;
             }
         }
+        self.out.actions += 1;
     }
 
     /// Records an `ActionPerformed` event.
     pub fn done(&mut self, action: &Term) -> Result<(), Fault> {
-        self.watch(Observed::Action(action));
-        self.changes(vec![Event::ActionPerformed {
-            action: action.to_string(),
-        }]);
+        self.done_with(|| action.clone());
         Ok(())
     }
 
@@ -208,9 +209,11 @@ impl Core {
         let inst = full.apply(&head);
         if spec.env {
             self.out.env_actions.push(inst.clone());
-            self.changes(vec![Event::EnvAction {
-                action: inst.to_string(),
-            }]);
+            if self.level >= TraceLevel::Changes {
+                self.event(Event::EnvAction {
+                    action: inst.to_string(),
+                });
+            }
         }
         let post = full.apply(&spec.post);
         if !post.is_ground() {

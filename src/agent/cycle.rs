@@ -2,6 +2,7 @@
 //! (percepts, messages, init on the first cycle, event when something is new, then main until
 //! it performs a real action) and returns what the agent did. No I/O, no threads.
 
+use super::directory::Directory;
 use super::error::RuntimeError;
 use super::kr_bridge::Limits;
 use super::mailbox::Message;
@@ -38,6 +39,8 @@ pub struct CycleOutput {
     pub printed: Vec<String>,
     /// Set when the agent stopped (in this or an earlier cycle).
     pub stopped: Option<StopReason>,
+    /// Real actions performed (counted at every trace level).
+    pub actions: u64,
 }
 
 /// How to create an agent.
@@ -45,8 +48,12 @@ pub struct CycleOutput {
 pub struct AgentConfig {
     /// Seed of the agent's random generator.
     pub seed: u64,
-    /// Names of every agent in the system (the agent's own name may be included).
+    /// Names of every agent in the system (the agent's own name may be included); ignored
+    /// when `directory` is given.
     pub agents: Vec<String>,
+    /// The system's agents, shared by all of them (must include this agent); saves building
+    /// the list once per agent in large systems.
+    pub directory: Option<Arc<Directory>>,
     /// Percept types declared by the environment.
     pub percept_types: Arc<PerceptTypes>,
     /// Limits of each KR query.
@@ -62,6 +69,7 @@ impl Default for AgentConfig {
         AgentConfig {
             seed: 0,
             agents: Vec::new(),
+            directory: None,
             percept_types: Arc::new(PerceptTypes::default()),
             limits: Limits::default(),
             max_steps: 1_000_000,
@@ -77,7 +85,7 @@ pub struct Core {
     pub rng: ChaCha8Rng,
     pub out: CycleOutput,
     /// Known agents (sorted, including self).
-    pub known: Vec<String>,
+    pub known: Arc<Directory>,
     pub level: TraceLevel,
     pub max_steps: u64,
     /// Output of Prolog write/format built-ins.
@@ -94,6 +102,9 @@ impl Core {
             Event::RuleEvaluated { .. } | Event::RuleFired { .. } => TraceLevel::Rules,
             _ => TraceLevel::Changes,
         };
+        if matches!(e, Event::ActionPerformed { .. }) {
+            self.out.actions += 1;
+        }
         if self.level >= need {
             self.out.events.push(e);
         }
@@ -131,21 +142,21 @@ pub struct Agent {
 impl Agent {
     /// Creates agent `name` running `program`.
     pub fn new(program: Arc<Program>, name: &str, config: AgentConfig) -> Agent {
-        let mut known: Vec<String> = config.agents.clone();
-        if !known.iter().any(|n| n == name) {
-            known.push(name.to_string());
-        }
-        known.sort();
-        known.dedup();
-        let others: Vec<Term> = known
-            .iter()
-            .filter(|n| *n != name)
-            .map(|n| Term::atom(n))
-            .collect();
+        let known = match config.directory {
+            Some(d) if d.contains(name) => d,
+            _ => {
+                let mut names = config
+                    .directory
+                    .as_ref()
+                    .map_or_else(|| config.agents.clone(), |d| d.names().to_vec());
+                names.push(name.to_string());
+                Directory::new(&names)
+            }
+        };
         let ms = MentalState::new(
             program.knowledge.clone(),
             &Term::atom(name),
-            &others,
+            known.clone(),
             config.limits,
             config.seed ^ 0x9e37_79b9_7f4a_7c15,
         );

@@ -1,6 +1,7 @@
 //! The mental state of one agent: shared knowledge, beliefs, goals (attention stack), typed
 //! percepts, mailbox and the `agent/1`, `me/1` facts; with the queries and updates on them.
 
+use super::directory::Directory;
 use super::error::Fault;
 use super::goals::{AttentionStack, Goal, GoalBase};
 use super::kr_bridge::{Engine, FactBase, Knowledge, KrError, Limits, NativeEngine, View};
@@ -18,8 +19,10 @@ pub struct MentalState {
     pub beliefs: FactBase,
     pub percepts: PerceptBase,
     pub mailbox: Mailbox,
-    /// `agent(A)` for every known agent and `me(Self)`.
-    pub agents: FactBase,
+    /// `agent(A)` for every known agent (shared by the agents of a system).
+    pub agents: Arc<Directory>,
+    /// `me(Self)`.
+    pub me: FactBase,
     pub attention: AttentionStack,
     /// The KR engine (limits, its own seeded RNG and output buffer); interior mutability lets
     /// queries run while conditions hold a shared borrow of the state.
@@ -35,26 +38,24 @@ pub struct UpdateEffect {
 }
 
 impl MentalState {
-    /// An empty mental state for agent `me` knowing `agents`.
+    /// An empty mental state for agent `me` knowing the agents of `agents` (which includes
+    /// `me`).
     pub fn new(
         knowledge: Arc<Knowledge>,
         me: &Term,
-        agents: &[Term],
+        agents: Arc<Directory>,
         limits: Limits,
         seed: u64,
     ) -> Self {
         let mut facts = FactBase::new();
-        for a in agents {
-            facts.insert(Term::compound(wk::AGENT, vec![a.clone()]));
-        }
-        facts.insert(Term::compound(wk::AGENT, vec![me.clone()]));
         facts.insert(Term::compound(wk::ME, vec![me.clone()]));
         MentalState {
             knowledge,
             beliefs: FactBase::new(),
             percepts: PerceptBase::default(),
             mailbox: Mailbox::default(),
-            agents: facts,
+            agents,
+            me: facts,
             attention: AttentionStack::default(),
             engine: RefCell::new(NativeEngine::new(seed).with_limits(limits)),
             record: true,
@@ -67,6 +68,9 @@ impl MentalState {
     /// segments: each negation is checked per answer of the conjuncts before it, as a cheap
     /// `holds` when it is ground. Answers and their order are those of the whole query.
     pub fn bel(&self, q: &Term) -> Result<Vec<Subst>, Fault> {
+        if self.cannot_hold(q) {
+            return Ok(Vec::new());
+        }
         let parts = q.conjuncts();
         let negation = |t: &Term| t.is_functor(wk::NOT, 1) || t.is_functor(wk::NAF, 1);
         if parts.len() < 2
@@ -122,6 +126,9 @@ impl MentalState {
 
     /// True when `q` has an answer in the belief base.
     pub fn believes(&self, q: &Term) -> Result<bool, Fault> {
+        if self.cannot_hold(q) {
+            return Ok(false);
+        }
         let bases = self.bases();
         let view = View::beliefs(&self.knowledge, &bases);
         self.run(|e| e.holds(&view, q), q)
@@ -129,12 +136,18 @@ impl MentalState {
 
     /// All answers of `q` against one goal's facts plus knowledge.
     pub fn in_goal(&self, g: &Goal, q: &Term) -> Result<Vec<Subst>, Fault> {
+        if let Some(answers) = goal_facts_only(&self.knowledge, g, q) {
+            return Ok(answers);
+        }
         let view = View::goal(&self.knowledge, &g.facts);
         self.run(|e| e.query(&view, q), q)
     }
 
     /// True when one goal's facts plus knowledge entail `q`.
     pub fn goal_holds(&self, g: &Goal, q: &Term) -> Result<bool, Fault> {
+        if let Some(answers) = goal_facts_only(&self.knowledge, g, q) {
+            return Ok(!answers.is_empty());
+        }
         let view = View::goal(&self.knowledge, &g.facts);
         self.run(|e| e.holds(&view, q), q)
     }
@@ -149,12 +162,29 @@ impl MentalState {
         Ok(false)
     }
 
-    fn bases(&self) -> [&FactBase; 5] {
+    /// True when the first goal of conjunction `q` can only match facts (no built-in, control
+    /// construct or knowledge rule answers to it) and no base has a fact of its predicate: then
+    /// `q` has no answer. Skips the engine for the common rule whose first literal looks for
+    /// something absent, e.g. `received(S, M)` with an empty mailbox.
+    fn cannot_hold(&self, q: &Term) -> bool {
+        let mut first = q;
+        while first.is_functor(wk::COMMA, 2) {
+            first = &first.args()[0];
+        }
+        let Some((name, arity)) = first.functor() else {
+            return false;
+        };
+        !self.knowledge.resolves(name, arity)
+            && !self.bases().iter().any(|b| b.has_predicate(name, arity))
+    }
+
+    fn bases(&self) -> [&FactBase; 6] {
         [
             &self.beliefs,
             self.percepts.facts(),
             self.mailbox.facts(),
-            &self.agents,
+            self.agents.facts(),
+            &self.me,
             self.percepts.batch(),
         ]
     }
@@ -290,4 +320,38 @@ impl MentalState {
         }
         Ok(())
     }
+}
+
+/// The answers of a one-literal query over a goal's facts by plain unification, when the goal
+/// has facts of the query's predicate and knowledge does not define it (then the engine would
+/// only match those facts too). `a-goal` conditions query every goal of the attention set, so
+/// skipping the engine here matters for agents with many goals. `None`: ask the engine.
+fn goal_facts_only(knowledge: &Knowledge, g: &Goal, q: &Term) -> Option<Vec<Subst>> {
+    let key = q.functor()?;
+    if !g.facts.iter().any(|f| f.functor() == Some(key)) || knowledge.defines(key.0, key.1) {
+        return None;
+    }
+    // Answers bind the query's variables in reading order, as the engine's answers do.
+    let vars: Vec<_> = q
+        .vars()
+        .into_iter()
+        .filter(|v| *v != wk::UNDERSCORE)
+        .collect();
+    let mut out: Vec<Subst> = Vec::new();
+    for f in g.facts.iter().filter(|f| f.functor() == Some(key)) {
+        let mut s = Subst::new();
+        if s.unify(q, f, false) {
+            let mut a = Subst::new();
+            for v in &vars {
+                let t = s.apply(&Term::Var(*v));
+                if t != Term::Var(*v) {
+                    a.bind(*v, t);
+                }
+            }
+            if !out.contains(&a) {
+                out.push(a);
+            }
+        }
+    }
+    Some(out)
 }

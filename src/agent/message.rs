@@ -7,7 +7,7 @@ use super::cycle::Core;
 use super::error::Fault;
 use super::mailbox::{received, sent, Message};
 use super::program::Receivers;
-use super::trace::Event;
+use super::trace::{Event, TraceLevel};
 use crate::syntax::ast::Mood;
 use crate::term::{well_known as wk, Subst, Term};
 
@@ -25,10 +25,14 @@ impl Core {
     fn receivers(&self, to: &Receivers, s: &Subst) -> Result<Vec<String>, Fault> {
         let mut names = Vec::new();
         match to {
-            Receivers::All => names.extend(self.known.iter().cloned()),
-            Receivers::AllOther => {
-                names.extend(self.known.iter().filter(|n| **n != self.name).cloned())
-            }
+            Receivers::All => names.extend(self.known.names().iter().cloned()),
+            Receivers::AllOther => names.extend(
+                self.known
+                    .names()
+                    .iter()
+                    .filter(|n| **n != self.name)
+                    .cloned(),
+            ),
             Receivers::SelfAgent => names.push(self.name.clone()),
             Receivers::Agents(ts) => {
                 let mut work: Vec<Term> = ts.iter().rev().map(|t| s.apply(t)).collect();
@@ -73,6 +77,7 @@ impl Core {
             });
         }
         let wrapped = wrap_mood(mood, c);
+        let record = self.level >= TraceLevel::Changes;
         let mut ev = Vec::new();
         for r in self.receivers(to, s)? {
             if !self.known.contains(&r) {
@@ -85,20 +90,26 @@ impl Core {
             if once && self.ms.mailbox.has_sent(&rt, &wrapped) {
                 continue;
             }
+            if record {
+                ev.push(Event::MessageSent {
+                    to: rt.to_string(),
+                    content: wrapped.to_string(),
+                });
+            }
             self.out.messages.push(Message {
                 sender: self.name.clone(),
-                receiver: r.clone(),
+                receiver: r,
                 content: wrapped.clone(),
             });
-            ev.push(Event::MessageSent {
-                to: rt.to_string(),
-                content: wrapped.to_string(),
-            });
             let f = sent(&rt, &wrapped);
-            if self.ms.mailbox.insert(f.clone()) {
-                ev.push(Event::MailAdded {
-                    fact: f.to_string(),
-                });
+            if record {
+                if self.ms.mailbox.insert(f.clone()) {
+                    ev.push(Event::MailAdded {
+                        fact: f.to_string(),
+                    });
+                }
+            } else {
+                self.ms.mailbox.insert(f);
             }
         }
         for e in ev {
@@ -112,13 +123,18 @@ impl Core {
 
     /// Stores incoming messages as `received(Sender, Content)`; true when there were any.
     pub fn receive(&mut self, messages: &[Message]) -> bool {
+        let record = self.level >= TraceLevel::Changes;
         let mut ev = Vec::new();
         for m in messages {
             let f = received(&Term::atom(&m.sender), &m.content);
-            if self.ms.mailbox.insert(f.clone()) {
-                ev.push(Event::MailAdded {
-                    fact: f.to_string(),
-                });
+            if record {
+                if self.ms.mailbox.insert(f.clone()) {
+                    ev.push(Event::MailAdded {
+                        fact: f.to_string(),
+                    });
+                }
+            } else {
+                self.ms.mailbox.insert(f);
             }
         }
         self.changes(ev);

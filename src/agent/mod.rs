@@ -26,6 +26,7 @@ pub mod action;
 mod compile;
 pub mod condition;
 pub mod cycle;
+pub mod directory;
 pub mod error;
 pub mod goals;
 pub mod kr_bridge;
@@ -40,6 +41,7 @@ pub mod trace;
 pub mod watch;
 
 pub use cycle::{Agent, AgentConfig, CycleOutput, StopReason};
+pub use directory::Directory;
 pub use error::RuntimeError;
 pub use mailbox::Message;
 pub use percepts::{PerceptType, PerceptTypes};

@@ -1,5 +1,6 @@
 //! One file per subcommand: its arguments and what it does.
 
+pub mod bench;
 pub mod check;
 pub mod prolog;
 pub mod run;

@@ -206,9 +206,26 @@ impl FactBase {
         entries[id as usize].term = None;
         self.free.push(id);
         if self.ids.is_empty() {
-            self.clear();
+            self.reset();
         }
         true
+    }
+
+    /// Empties the base after its last fact went. A small base keeps its allocations (a
+    /// mailbox that empties after every message would otherwise rebuild its maps each time);
+    /// a large one frees them, so memory follows the current size.
+    fn reset(&mut self) {
+        if self.entries.capacity() > 256 {
+            self.clear();
+            return;
+        }
+        self.entries.clear();
+        self.free.clear();
+        self.ids.clear();
+        self.all = None;
+        self.preds.clear();
+        self.arg1.clear();
+        self.arg2.clear();
     }
 
     /// Removes every fact and frees the memory.
@@ -227,6 +244,11 @@ impl FactBase {
             id = e.links[ALL].next;
             e.term.as_ref()
         })
+    }
+
+    /// True when the base holds at least one fact of `name/arity`.
+    pub fn has_predicate(&self, name: Sym, arity: usize) -> bool {
+        self.preds.contains_key(&(name, arity as u32))
     }
 
     /// The facts of predicate `name/arity` in insertion order.

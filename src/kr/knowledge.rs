@@ -284,6 +284,12 @@ impl Knowledge {
             .collect()
     }
 
+    /// True when calling `name/arity` runs a built-in, a control construct or knowledge
+    /// clauses; false when it can only match facts of the fact bases.
+    pub fn resolves(&self, name: Sym, arity: usize) -> bool {
+        self.table.contains_key(&(name, arity as u32))
+    }
+
     /// True when knowledge clauses define `name/arity`.
     pub fn defines(&self, name: Sym, arity: usize) -> bool {
         matches!(

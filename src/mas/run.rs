@@ -10,7 +10,8 @@ use super::stats::{AgentStats, Deliveries, EndReason, RunSummary};
 use super::system::{MasSystem, Problem};
 use super::trace::{AgentInfo, TraceWriter};
 use crate::agent::{
-    Agent, AgentConfig, Event, Message, PerceptType, PerceptTypes, StopReason, TraceLevel,
+    Agent, AgentConfig, Directory, Event, Message, PerceptType, PerceptTypes, StopReason,
+    TraceLevel,
 };
 use crate::bw4t::Bw4t;
 use crate::diag::Diagnostic;
@@ -85,6 +86,9 @@ pub trait Observer {
     }
     /// Progress, every few rounds.
     fn progress(&mut self, _p: &Progress) {}
+    /// Every agent is created and the first round is about to start (benchmarks time the
+    /// creation apart from the run).
+    fn started(&mut self, _agents: usize, _workers: usize) {}
 }
 
 /// An observer that ignores everything.
@@ -98,7 +102,13 @@ pub fn run(
     trace: Option<TraceWriter>,
     obs: &mut dyn Observer,
 ) -> Result<(RunSummary, Option<String>), Vec<Problem>> {
-    let mut setup = Setup::new(system, opts, obs)?;
+    // Without a trace nobody reads the events: the agents then skip building them.
+    let level = match (&trace, opts.trace_rules) {
+        (None, _) => TraceLevel::Off,
+        (Some(_), true) => TraceLevel::Rules,
+        (Some(_), false) => TraceLevel::Changes,
+    };
+    let mut setup = Setup::new(system, opts, level, obs)?;
     let summary = setup.run_loop(trace, obs);
     Ok(summary)
 }
@@ -111,6 +121,18 @@ struct Slot {
     acted: bool,
     percepts: Vec<Term>,
     inbox: Vec<Message>,
+    /// In the ready queue (something new for the next round).
+    queued: bool,
+    /// Rounds before this one are accounted in `stats.idle_ticks`.
+    counted: u64,
+}
+
+/// Queues slot `i` for the next round (once).
+fn mark(queue: &mut Vec<usize>, slot: &mut Slot, i: usize) {
+    if !slot.queued {
+        slot.queued = true;
+        queue.push(i);
+    }
 }
 
 struct Setup<'a> {
@@ -124,6 +146,9 @@ struct Setup<'a> {
     router: Router,
     by_entity: BTreeMap<String, Vec<usize>>,
     initial: Vec<(String, Vec<Term>)>,
+    /// Slots with something new (acted, percepts or messages): with idle skipping only these
+    /// are looked at, so a round costs time in the number of busy agents, not all agents.
+    ready: Vec<usize>,
 }
 
 fn problem(code: &str, msg: String) -> Vec<Problem> {
@@ -204,6 +229,7 @@ impl<'a> Setup<'a> {
     fn new(
         system: &'a MasSystem,
         opts: &'a RunOptions,
+        level: TraceLevel,
         obs: &mut dyn Observer,
     ) -> Result<Setup<'a>, Vec<Problem>> {
         let mut launcher = Launcher::new(&system.rules);
@@ -241,6 +267,7 @@ impl<'a> Setup<'a> {
         }
         let names: Vec<String> = launches.iter().map(|l| l.name.clone()).collect();
         let types = Arc::new(info.as_ref().map(percept_types).unwrap_or_default());
+        let directory = Directory::new(&names);
         let mut agents = Vec::new();
         let mut slots = Vec::new();
         let mut by_entity: BTreeMap<String, Vec<usize>> = BTreeMap::new();
@@ -253,13 +280,9 @@ impl<'a> Setup<'a> {
             })?;
             let config = AgentConfig {
                 seed: agent_seed(seed, &l.name),
-                agents: names.clone(),
+                directory: Some(directory.clone()),
                 percept_types: types.clone(),
-                trace: if opts.trace_rules {
-                    TraceLevel::Rules
-                } else {
-                    TraceLevel::Changes
-                },
+                trace: level,
                 ..AgentConfig::default()
             };
             agents.push(Agent::new(prog.clone(), &l.name, config));
@@ -277,6 +300,8 @@ impl<'a> Setup<'a> {
                 acted: true,
                 percepts: Vec::new(),
                 inbox: Vec::new(),
+                queued: true,
+                counted: 0,
             });
         }
         let initial = match &env {
@@ -285,6 +310,7 @@ impl<'a> Setup<'a> {
                 .map_err(|e| problem("M0030", format!("environment: {e}")))?,
             None => Vec::new(),
         };
+        let slots_len = slots.len();
         let pool = Pool::new(agents, opts.workers).map_err(|e| problem("M0033", e.0))?;
         Ok(Setup {
             system,
@@ -295,6 +321,7 @@ impl<'a> Setup<'a> {
             pool,
             router: Router::new(&names),
             slots,
+            ready: (0..slots_len).collect(),
             by_entity,
             initial,
         })
@@ -304,8 +331,10 @@ impl<'a> Setup<'a> {
         for (entity, batch) in batches {
             if let Some(ids) = self.by_entity.get(&entity) {
                 for &i in ids {
-                    if !self.slots[i].stats.stopped {
-                        self.slots[i].percepts.extend(batch.iter().cloned());
+                    let s = &mut self.slots[i];
+                    if !s.stats.stopped && !batch.is_empty() {
+                        s.percepts.extend(batch.iter().cloned());
+                        mark(&mut self.ready, s, i);
                     }
                 }
             }
@@ -346,23 +375,41 @@ impl<'a> Setup<'a> {
         }
         let initial = std::mem::take(&mut self.initial);
         self.deliver_percepts(initial);
+        obs.started(self.slots.len(), self.pool.workers());
         let start = Instant::now();
         let mut round: u64 = 0;
         let mut tick: u64 = 0;
         let mut messages: u64 = 0;
         let mut last_progress = Instant::now();
+        let mut iters: u64 = 0;
+        let mut alive = self.slots.iter().filter(|s| !s.stats.stopped).count();
+        let mut fresh = vec![false; self.slots.len()];
         let end = loop {
             if self.opts.time_limit.is_some_and(|l| start.elapsed() >= l) {
                 break EndReason::TimeLimit;
             }
-            let mut jobs: Vec<Job> = Vec::new();
-            let mut fresh = vec![false; self.slots.len()];
-            for (i, s) in self.slots.iter_mut().enumerate() {
+            let k = iters;
+            iters += 1;
+            let candidates: Vec<usize> = if self.opts.skip_idle {
+                let mut q = std::mem::take(&mut self.ready);
+                q.sort_unstable();
+                q
+            } else {
+                self.ready.clear();
+                (0..self.slots.len()).collect()
+            };
+            let mut jobs: Vec<Job> = Vec::with_capacity(candidates.len());
+            for i in candidates {
+                let s = &mut self.slots[i];
+                s.queued = false;
                 if s.stats.stopped {
                     s.percepts.clear();
                     s.inbox.clear();
                     continue;
                 }
+                // Rounds since the slot was last looked at had nothing new for it.
+                s.stats.idle_ticks += k - s.counted;
+                s.counted = k + 1;
                 let new = s.acted || !s.percepts.is_empty() || !s.inbox.is_empty();
                 fresh[i] = new;
                 if new || !self.opts.skip_idle {
@@ -376,7 +423,7 @@ impl<'a> Setup<'a> {
                 }
             }
             if jobs.is_empty() && self.env.is_none() {
-                break if self.slots.iter().all(|s| s.stats.stopped) {
+                break if alive == 0 {
                     EndReason::AllStopped
                 } else {
                     EndReason::Idle
@@ -394,15 +441,13 @@ impl<'a> Setup<'a> {
             let mut sent: Vec<Message> = Vec::new();
             for (i, out) in outputs {
                 let s = &mut self.slots[i];
+                let was_stopped = s.stats.stopped;
+                let new = std::mem::replace(&mut fresh[i], false);
                 s.stats.cycles += 1;
-                let performed = out
-                    .events
-                    .iter()
-                    .filter(|e| matches!(e, Event::ActionPerformed { .. }))
-                    .count() as u64;
+                let performed = out.actions;
                 s.stats.actions += performed;
                 s.acted = performed > 0 || !out.env_actions.is_empty() || !out.messages.is_empty();
-                let idle = !fresh[i] && !s.acted && out.printed.is_empty() && out.stopped.is_none();
+                let idle = !new && !s.acted && out.printed.is_empty() && out.stopped.is_none();
                 if idle {
                     // A cycle with nothing new that did nothing: as if it was skipped.
                     s.stats.idle_ticks += 1;
@@ -447,6 +492,11 @@ impl<'a> Setup<'a> {
                     Some(StopReason::MainExited) => s.stats.stopped = true,
                     None => {}
                 }
+                if s.stats.stopped && !was_stopped {
+                    alive -= 1;
+                } else if s.acted && !s.stats.stopped {
+                    mark(&mut self.ready, s, i);
+                }
             }
             // Messages: (sender, sequence) order; a stable sort keeps each sender's sequence.
             sent.sort_by(|a, b| a.sender.cmp(&b.sender));
@@ -458,16 +508,19 @@ impl<'a> Setup<'a> {
                 }
                 obs.message(round, m, known);
             }
-            let mut inboxes: Vec<Vec<Message>> = vec![Vec::new(); self.slots.len()];
-            for m in self.router.route(sent, &mut inboxes) {
-                obs.warning(&format!(
-                    "message {} from {} to unknown agent {} dropped",
-                    m.content, m.sender, m.receiver
-                ));
-            }
-            for (s, b) in self.slots.iter_mut().zip(inboxes) {
-                if !s.stats.stopped {
-                    s.inbox.extend(b);
+            for m in sent {
+                match self.router.index(&m.receiver) {
+                    Some(j) => {
+                        let s = &mut self.slots[j];
+                        if !s.stats.stopped {
+                            s.inbox.push(m);
+                            mark(&mut self.ready, s, j);
+                        }
+                    }
+                    None => obs.warning(&format!(
+                        "message {} from {} to unknown agent {} dropped",
+                        m.content, m.sender, m.receiver
+                    )),
                 }
             }
             let mut finished = false;
@@ -512,7 +565,7 @@ impl<'a> Setup<'a> {
             if finished {
                 break EndReason::Completed;
             }
-            if self.slots.iter().all(|s| s.stats.stopped) {
+            if alive == 0 {
                 break EndReason::AllStopped;
             }
             if tick >= self.opts.max_ticks {
@@ -526,6 +579,9 @@ impl<'a> Setup<'a> {
                 }
             }
         };
+        for s in self.slots.iter_mut().filter(|s| !s.stats.stopped) {
+            s.stats.idle_ticks += iters.saturating_sub(s.counted);
+        }
         let (deliveries, env_stats) = self.env_status();
         let summary = RunSummary {
             completed: end == EndReason::Completed,

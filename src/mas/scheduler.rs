@@ -1,11 +1,13 @@
-//! The worker pool: each agent is owned by one worker; a round hands every worker the cycles to
-//! run for its agents and collects the outputs, returned in agent-index order so the result
-//! never depends on thread timing. Worker 0 is the calling (scheduler) thread itself, so with
-//! `N` workers there are `N - 1` extra threads and a one-worker pool has no hand-offs at all.
+//! The worker pool: a round hands every thread a contiguous share of the cycles to run and
+//! collects the outputs, returned in agent-index order so the result never depends on thread
+//! timing. The calling thread runs the first share itself, and rounds with very few cycles
+//! (a token ring moves one agent per round) run entirely on it: waking a thread costs more
+//! than such a cycle.
 
 use crate::agent::{Agent, CycleOutput, Message};
 use crate::term::Term;
 use crossbeam_channel::{unbounded, Receiver, Sender};
+use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 
 /// One cycle to run: agent index, percept batch, incoming messages.
@@ -13,98 +15,114 @@ pub type Job = (usize, Vec<Term>, Vec<Message>);
 
 type Done = Vec<(usize, CycleOutput)>;
 
+/// Rounds with fewer cycles than this run on the calling thread only.
+const INLINE_BELOW: usize = 4;
+
+/// The agents, each behind its own lock (a round never runs one agent twice, so the locks
+/// are never contended; they make sharing the agents between threads safe).
+type Agents = Arc<Vec<Mutex<Agent>>>;
+
 struct Worker {
-    tx: Option<Sender<Vec<Job>>>,
+    tx: Sender<Vec<Job>>,
     rx: Receiver<Done>,
     join: Option<JoinHandle<()>>,
 }
 
-/// A pool of workers owning the agents.
+/// A pool of threads running agent cycles.
 pub struct Pool {
-    /// Workers 1.. (threads).
-    threads: Vec<Worker>,
-    /// Worker of each agent index.
-    owner: Vec<usize>,
-    /// The agents of worker 0 (run on the caller's thread).
-    local: Vec<(usize, Agent)>,
+    agents: Agents,
+    workers: Vec<Worker>,
 }
 
 /// Why the pool could not run a round.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct PoolError(pub String);
 
+fn step(agents: &[Mutex<Agent>], jobs: Vec<Job>, done: &mut Done) -> Result<(), PoolError> {
+    for (i, percepts, messages) in jobs {
+        let cell = agents
+            .get(i)
+            .ok_or_else(|| PoolError(format!("no agent with index {i}")))?;
+        let mut a = cell
+            .lock()
+            .map_err(|_| PoolError("an agent panicked in an earlier round".into()))?;
+        // A panic in an agent is a bug; report it as a failed round instead of unwinding
+        // through the run loop.
+        let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            a.step(&percepts, &messages)
+        }))
+        .map_err(|_| PoolError(format!("agent {i} panicked")))?;
+        done.push((i, out));
+    }
+    Ok(())
+}
+
 impl Pool {
-    /// Distributes `agents` (index = position) round-robin over `workers` workers (at least 1,
-    /// at most one per agent).
+    /// A pool running `agents` (index = position) on `workers` threads in all (at least 1, at
+    /// most one per agent), the calling thread included.
     pub fn new(agents: Vec<Agent>, workers: usize) -> Result<Pool, PoolError> {
         let n = workers.clamp(1, agents.len().max(1));
-        let mut owned: Vec<Vec<(usize, Agent)>> = (0..n).map(|_| Vec::new()).collect();
-        let mut owner = Vec::with_capacity(agents.len());
-        for (i, a) in agents.into_iter().enumerate() {
-            owner.push(i % n);
-            owned[i % n].push((i, a));
-        }
-        let mut owned = owned.into_iter();
-        let local = owned.next().unwrap_or_default();
-        let mut threads = Vec::with_capacity(n.saturating_sub(1));
-        for (w, agents) in owned.enumerate() {
+        let agents: Agents = Arc::new(agents.into_iter().map(Mutex::new).collect());
+        let mut ws = Vec::with_capacity(n - 1);
+        for w in 1..n {
             let (job_tx, job_rx) = unbounded::<Vec<Job>>();
             let (done_tx, done_rx) = unbounded::<Done>();
+            let shared = agents.clone();
             let join = std::thread::Builder::new()
-                .name(format!("agents-{}", w + 1))
-                .spawn(move || work(agents, job_rx, done_tx))
+                .name(format!("agents-{w}"))
+                .spawn(move || work(shared, job_rx, done_tx))
                 .map_err(|e| PoolError(format!("cannot start a worker thread: {e}")))?;
-            threads.push(Worker {
-                tx: Some(job_tx),
+            ws.push(Worker {
+                tx: job_tx,
                 rx: done_rx,
                 join: Some(join),
             });
         }
         Ok(Pool {
-            threads,
-            owner,
-            local,
+            agents,
+            workers: ws,
         })
     }
 
-    /// The number of workers (including the caller's thread).
+    /// The number of threads running agents (the calling thread included).
     pub fn workers(&self) -> usize {
-        self.threads.len() + 1
+        self.workers.len() + 1
     }
 
-    /// Runs one cycle for each job (in parallel across workers) and returns the outputs sorted
+    /// Runs one cycle for each job (in parallel across threads) and returns the outputs sorted
     /// by agent index.
-    pub fn round(&mut self, jobs: Vec<Job>) -> Result<Vec<(usize, CycleOutput)>, PoolError> {
-        let mut per: Vec<Vec<Job>> = (0..self.workers()).map(|_| Vec::new()).collect();
-        for job in jobs {
-            let w = self
-                .owner
-                .get(job.0)
-                .copied()
-                .ok_or_else(|| PoolError(format!("no agent with index {}", job.0)))?;
-            per[w].push(job);
+    pub fn round(&self, mut jobs: Vec<Job>) -> Result<Vec<(usize, CycleOutput)>, PoolError> {
+        let mut out = Vec::with_capacity(jobs.len());
+        if jobs.len() < INLINE_BELOW || self.workers.is_empty() {
+            step(&self.agents, jobs, &mut out)?;
+            out.sort_by_key(|(i, _)| *i);
+            return Ok(out);
         }
-        let mut per = per.into_iter();
-        let mine = per.next().unwrap_or_default();
+        let shares = self.workers.len() + 1;
+        let size = jobs.len().div_ceil(shares);
         let mut busy = Vec::new();
-        for (w, jobs) in per.enumerate() {
-            if !jobs.is_empty() {
-                self.threads[w]
-                    .tx
-                    .as_ref()
-                    .and_then(|tx| tx.send(jobs).ok())
-                    .ok_or_else(|| PoolError("a worker thread stopped".into()))?;
-                busy.push(w);
+        // Hand out the tail shares first; the calling thread keeps the first.
+        for w in (0..self.workers.len()).rev() {
+            let from = size * (w + 1);
+            if from >= jobs.len() {
+                continue;
             }
+            let share = jobs.split_off(from);
+            self.workers[w]
+                .tx
+                .send(share)
+                .map_err(|_| PoolError("a worker thread stopped".into()))?;
+            busy.push(w);
         }
-        let mut out = step_all(&mut self.local, mine);
+        let mine = step(&self.agents, jobs, &mut out);
         for w in busy {
-            let done = self.threads[w]
+            let done = self.workers[w]
                 .rx
                 .recv()
                 .map_err(|_| PoolError("a worker thread stopped (panic in an agent?)".into()))?;
             out.extend(done);
         }
+        mine?;
         out.sort_by_key(|(i, _)| *i);
         Ok(out)
     }
@@ -112,11 +130,12 @@ impl Pool {
 
 impl Drop for Pool {
     fn drop(&mut self) {
-        for w in &mut self.threads {
+        for w in &mut self.workers {
             // Closing the job channel ends the worker loop.
-            w.tx = None;
+            let (dead, _) = unbounded();
+            w.tx = dead;
         }
-        for w in &mut self.threads {
+        for w in &mut self.workers {
             if let Some(j) = w.join.take() {
                 let _ = j.join();
             }
@@ -124,20 +143,12 @@ impl Drop for Pool {
     }
 }
 
-fn step_all(agents: &mut [(usize, Agent)], jobs: Vec<Job>) -> Done {
-    let mut done = Vec::with_capacity(jobs.len());
-    for (i, percepts, messages) in jobs {
-        // Agents are stored in index order: binary search.
-        if let Ok(k) = agents.binary_search_by_key(&i, |(j, _)| *j) {
-            done.push((i, agents[k].1.step(&percepts, &messages)));
-        }
-    }
-    done
-}
-
-fn work(mut agents: Vec<(usize, Agent)>, rx: Receiver<Vec<Job>>, tx: Sender<Done>) {
+fn work(agents: Agents, rx: Receiver<Vec<Job>>, tx: Sender<Done>) {
     while let Ok(jobs) = rx.recv() {
-        if tx.send(step_all(&mut agents, jobs)).is_err() {
+        let mut done = Vec::with_capacity(jobs.len());
+        // An error (unknown index, poisoned lock) ends this thread; the caller then reports
+        // that a worker stopped.
+        if step(&agents, jobs, &mut done).is_err() || tx.send(done).is_err() {
             break;
         }
     }
