@@ -565,7 +565,15 @@ impl<'a, 'm> Solver<'a, 'm> {
         depth: u32,
     ) -> KrResult<bool> {
         let pred = self.pred(r);
-        let list = pred.candidates(key);
+        // The second-argument key is read from the goal on every entry: backtracking restores
+        // the bindings of the call, so the candidate list is the same each time.
+        let key2 = match (key, goal) {
+            (None, Cell::Ptr(p)) if pred.arity >= 2 && pred.has_second_index() => {
+                Key::of_cell(&self.m.st, self.a(p, 1))
+            }
+            _ => None,
+        };
+        let list = pred.candidates(key, key2);
         let mut i = Self::skip(pred, list, pos as usize, key);
         loop {
             if i >= list.len() {
