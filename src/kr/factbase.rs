@@ -120,7 +120,15 @@ impl FactBase {
 
     /// True when exactly this fact is present.
     pub fn contains(&self, fact: &Term) -> bool {
-        self.ids.contains_key(fact)
+        // Empty bases (often the mailbox) are common: skip hashing the term.
+        !self.ids.is_empty() && self.ids.contains_key(fact)
+    }
+
+    /// True when some fact of predicate `name/arity` is present (cheaper than hashing a
+    /// whole fact: lets lookups skip bases that cannot hold it).
+    #[inline]
+    pub fn has_pred(&self, name: Sym, arity: usize) -> bool {
+        !self.preds.is_empty() && self.preds.contains_key(&(name, arity as u32))
     }
 
     /// Adds a fact (an atom or compound term, normally ground); returns false when it was

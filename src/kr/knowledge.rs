@@ -19,6 +19,8 @@ pub(crate) struct Clause {
     pub preds: Vec<Option<PredRef>>,
     pub nslots: u32,
     pub key: Option<Key>,
+    /// The key of the second head argument (for the second-argument index).
+    pub key2: Option<Key>,
 }
 
 /// The clauses of one predicate, with a first-argument index when there are many.
@@ -30,6 +32,10 @@ pub(crate) struct Pred {
     pub all: Vec<u32>,
     pub by_key: FxHashMap<Key, Vec<u32>>,
     pub var_first: Vec<u32>,
+    /// Second-argument index, used when the goal's first argument is unbound (as in
+    /// `\+ on(_, X)`).
+    pub by_key2: FxHashMap<Key, Vec<u32>>,
+    pub var_second: Vec<u32>,
 }
 
 /// What a goal `name/arity` refers to.
@@ -104,16 +110,27 @@ pub fn is_protected(name: &str) -> bool {
 }
 
 impl Pred {
-    /// The clause indices that can match a goal whose first argument has key `k`.
+    /// The clause indices that can match a goal whose first argument has key `k` (and,
+    /// when the first is unbound, whose second argument has key `k2`). Clause order is kept.
     #[inline]
-    pub fn candidates(&self, k: Option<Key>) -> &[u32] {
-        match k {
-            Some(k) if !self.by_key.is_empty() => match self.by_key.get(&k) {
+    pub fn candidates(&self, k: Option<Key>, k2: Option<Key>) -> &[u32] {
+        match (k, k2) {
+            (Some(k), _) if !self.by_key.is_empty() => match self.by_key.get(&k) {
                 Some(v) => v,
                 None => &self.var_first,
             },
+            (None, Some(k2)) if !self.by_key2.is_empty() => match self.by_key2.get(&k2) {
+                Some(v) => v,
+                None => &self.var_second,
+            },
             _ => &self.all,
         }
+    }
+
+    /// True when goals may use the second-argument index.
+    #[inline]
+    pub fn has_second_index(&self) -> bool {
+        !self.by_key2.is_empty()
     }
 
     fn index(&mut self) {
@@ -122,28 +139,38 @@ impl Pred {
         if n < 4 {
             return;
         }
-        let mut by_key: FxHashMap<Key, Vec<u32>> = FxHashMap::default();
-        for c in &self.clauses {
-            if let Some(k) = c.key {
-                by_key.entry(k).or_default();
-            }
+        let keys1: Vec<Option<Key>> = self.clauses.iter().map(|c| c.key).collect();
+        (self.by_key, self.var_first) = Self::index_on(&keys1);
+        if self.arity >= 2 {
+            let keys2: Vec<Option<Key>> = self.clauses.iter().map(|c| c.key2).collect();
+            (self.by_key2, self.var_second) = Self::index_on(&keys2);
         }
-        for (i, c) in self.clauses.iter().enumerate() {
-            match c.key {
+    }
+
+    /// For each key, the clauses whose argument has that key or is a variable (in order);
+    /// and the clauses whose argument is a variable.
+    fn index_on(keys: &[Option<Key>]) -> (FxHashMap<Key, Vec<u32>>, Vec<u32>) {
+        let mut by_key: FxHashMap<Key, Vec<u32>> = FxHashMap::default();
+        let mut var = Vec::new();
+        for k in keys.iter().flatten() {
+            by_key.entry(*k).or_default();
+        }
+        for (i, k) in keys.iter().enumerate() {
+            match k {
                 Some(k) => {
-                    if let Some(v) = by_key.get_mut(&k) {
+                    if let Some(v) = by_key.get_mut(k) {
                         v.push(i as u32)
                     }
                 }
                 None => {
-                    self.var_first.push(i as u32);
+                    var.push(i as u32);
                     for v in by_key.values_mut() {
                         v.push(i as u32)
                     }
                 }
             }
         }
-        self.by_key = by_key;
+        (by_key, var)
     }
 }
 
@@ -368,6 +395,8 @@ impl Knowledge {
                     all: Vec::new(),
                     by_key: FxHashMap::default(),
                     var_first: Vec::new(),
+                    by_key2: FxHashMap::default(),
+                    var_second: Vec::new(),
                 });
                 let i = self.preds.len() as u32 - 1;
                 self.table.insert((name, arity), PredRef::User(i));
@@ -392,6 +421,7 @@ impl Knowledge {
             }
         }
         let key = head.args().first().and_then(Key::of_term);
+        let key2 = head.args().get(1).and_then(Key::of_term);
         self.preds[idx as usize].clauses.push(Clause {
             code,
             head: head_cell,
@@ -399,6 +429,7 @@ impl Knowledge {
             body: body_cells,
             nslots: vars.len() as u32,
             key,
+            key2,
         });
         self.clause_count += 1;
     }
@@ -433,5 +464,36 @@ impl Knowledge {
             }
         }
         self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::kr::{Engine, Knowledge, NativeEngine, View};
+    use crate::syntax::prolog::Reader;
+
+    #[test]
+    fn second_argument_index_keeps_answers_and_order() {
+        let mut r = Reader::new("t");
+        let src = "on(a, b). on(b, c). on(X, d). on(c, d). on(e, b). on(f, Y).";
+        let (clauses, _) = r.clauses(src, 0);
+        let kn = Knowledge::load(&clauses.into_iter().map(|c| c.term).collect::<Vec<_>>()).unwrap();
+        let mut e = NativeEngine::new(0);
+        let mut answers = |q: &str| -> Vec<String> {
+            let q = r.term(q, 0).unwrap().term;
+            let view = View::beliefs(&kn, &[]);
+            e.query(&view, &q)
+                .unwrap()
+                .iter()
+                .map(|s| s.iter().map(|(_, t)| t.to_string()).collect::<String>())
+                .collect()
+        };
+        assert_eq!(answers("on(W, b)"), ["a", "e", "f"]);
+        assert_eq!(answers("on(W, d)"), ["", "c", "f"]);
+        assert_eq!(answers("on(W, z)"), ["f"]);
+        assert_eq!(answers("on(c, W)"), ["d", "d"]);
+        // on(f, Y) matches any second argument.
+        assert!(answers("\\+ on(_, a)").is_empty());
+        assert_eq!(answers("\\+ on(b, b)"), [""]);
     }
 }

@@ -73,7 +73,8 @@
 //! variable slots (`code.rs`), so a head is unified directly against the goal and only the body
 //! is built; `machine.rs` (with `control.rs` and `facts.rs`) runs SLD resolution with an explicit goal-frame arena and choicepoint
 //! stack (cut barriers per clause, opaque `call/N`, `\+`, `->`, `*->`, `findall/3` collecting
-//! off-heap). Clauses are indexed on the first argument when a predicate has four or more.
+//! off-heap). Clauses are indexed on the first argument when a predicate has four or more (and on
+//! the second, used when the first argument of the goal is unbound).
 //! Built-ins are native Rust (`builtins.rs`, `arith.rs`, `text.rs`, `lists.rs`, `output.rs`)
 //! or standard Prolog definitions compiled once per process (`prelude.rs`: `append/3`,
 //! `select/3`, `maplist/2..5`, `foldl/4..6`, `bagof/3`, `setof/3`, `aggregate_all/3,4`, ...).

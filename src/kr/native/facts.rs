@@ -8,6 +8,9 @@ use crate::kr::error::KrResult;
 use crate::kr::factbase::Scan;
 use crate::term::{Sym, Term};
 
+/// Nesting handled by plain recursion in [`Solver::unify_fact_arg`] (bounded, so it is safe).
+const SHALLOW_DEPTH: u32 = 4;
+
 impl<'a> Solver<'a, '_> {
     /// Starts scanning fact source `stage` (a fact base, or the goal facts after the last base).
     pub(crate) fn start_scan(&self, stage: u32, _g: Cell, name: Sym, arity: u32, p: u32) -> Scan {
@@ -132,19 +135,40 @@ impl<'a> Solver<'a, '_> {
     }
 
     pub(crate) fn unify_fact_arg(&mut self, c: Cell, t: &Term) -> bool {
+        self.unify_fact_shallow(c, t, SHALLOW_DEPTH)
+    }
+
+    /// Unifies without allocating while the term is shallow (atomic arguments, compounds
+    /// nested up to `depth` levels, as in `percept(seen(1, 2))`); deeper parts go to the
+    /// iterative unifier, so user-controlled nesting cannot overflow the stack.
+    fn unify_fact_shallow(&mut self, c: Cell, t: &Term, depth: u32) -> bool {
         match (self.m.st.deref(c), t) {
-            (Cell::Atom(x), Term::Atom(y)) => return x == *y,
-            (Cell::Int(x), Term::Int(y)) => return x == *y,
+            (Cell::Atom(x), Term::Atom(y)) => x == *y,
+            (Cell::Int(x), Term::Int(y)) => x == *y,
             (Cell::Ref(a), Term::Atom(y)) => {
                 self.m.st.bind(a, Cell::Atom(*y));
-                return true;
+                true
             }
             (Cell::Ref(a), Term::Int(y)) => {
                 self.m.st.bind(a, Cell::Int(*y));
-                return true;
+                true
             }
-            _ => {}
+            (Cell::Ptr(p), Term::Compound(k)) if depth > 0 => {
+                if self.m.st.heap[p as usize].fun() != Some((k.name, k.args.len() as u32)) {
+                    return false;
+                }
+                for (i, a) in k.args.iter().enumerate() {
+                    if !self.unify_fact_shallow(self.a(p, i as u32), a, depth - 1) {
+                        return false;
+                    }
+                }
+                true
+            }
+            _ => self.unify_fact_deep(c, t),
         }
+    }
+
+    fn unify_fact_deep(&mut self, c: Cell, t: &Term) -> bool {
         let mut work: Vec<(Cell, &Term)> = vec![(c, t)];
         while let Some((c, t)) = work.pop() {
             let c = self.m.st.deref(c);

@@ -184,7 +184,8 @@ impl<'a, 'm> Solver<'a, 'm> {
 
     /// The current answer as a substitution over the query's variables.
     pub fn answer(&self) -> KrResult<Subst> {
-        let mut names = VarNames::new(&self.query_vars);
+        // Names are only needed for unbound variables inside answers: built on first use.
+        let mut names: Option<VarNames> = None;
         let mut s = Subst::new();
         for (v, c) in &self.query_vars {
             let d = self.m.st.deref(*c);
@@ -193,7 +194,18 @@ impl<'a, 'm> Solver<'a, 'm> {
                     continue;
                 }
             }
-            let t = self.m.st.to_term(d, &mut names);
+            // Atomic answers (the common case) need no traversal.
+            let atomic = match d {
+                Cell::Atom(x) => Some(Term::Atom(x)),
+                Cell::Int(i) => Some(Term::Int(i)),
+                _ => None,
+            };
+            if let Some(t) = atomic {
+                s.bind(*v, t);
+                continue;
+            }
+            let names = names.get_or_insert_with(|| VarNames::new(&self.query_vars));
+            let t = self.m.st.to_term(d, names);
             // `to_term` stops on a cyclic term and raises the flag.
             if self.m.st.cyclic.get() {
                 return Err(cyclic());
@@ -553,7 +565,15 @@ impl<'a, 'm> Solver<'a, 'm> {
         depth: u32,
     ) -> KrResult<bool> {
         let pred = self.pred(r);
-        let list = pred.candidates(key);
+        // The second-argument key is read from the goal on every entry: backtracking restores
+        // the bindings of the call, so the candidate list is the same each time.
+        let key2 = match (key, goal) {
+            (None, Cell::Ptr(p)) if pred.arity >= 2 && pred.has_second_index() => {
+                Key::of_cell(&self.m.st, self.a(p, 1))
+            }
+            _ => None,
+        };
+        let list = pred.candidates(key, key2);
         let mut i = Self::skip(pred, list, pos as usize, key);
         loop {
             if i >= list.len() {

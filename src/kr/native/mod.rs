@@ -113,7 +113,10 @@ impl NativeEngine {
             return None;
         }
         Some(
-            view.bases.iter().filter(|b| b.contains(query)).count()
+            view.bases
+                .iter()
+                .filter(|b| b.has_pred(name, arity) && b.contains(query))
+                .count()
                 + view.goal_facts.iter().filter(|f| *f == query).count(),
         )
     }

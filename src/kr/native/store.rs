@@ -303,6 +303,49 @@ impl Store {
     pub fn put_term(&mut self, t: &Term, vars: &mut Vec<(Sym, Cell)>) -> Cell {
         let root = self.heap.len() as u32;
         self.heap.push(Cell::Ref(root));
+        self.put_shallow(root, t, vars, 4);
+        self.heap[root as usize]
+    }
+
+    /// Fills `slot` with `t` by bounded recursion (no allocation for the usual small goals);
+    /// parts nested deeper than `depth` are copied by the iterative [`Store::put_deep`], in
+    /// the same left-to-right order, so variables are numbered alike.
+    fn put_shallow(&mut self, slot: u32, t: &Term, vars: &mut Vec<(Sym, Cell)>, depth: u32) {
+        let c = match t {
+            Term::Atom(s) => Cell::Atom(*s),
+            Term::Int(i) => Cell::Int(*i),
+            Term::Float(f) => Cell::Flt(f.0),
+            Term::Str(s) => self.new_str(s.clone()),
+            Term::Var(v) => {
+                if *v == wk::UNDERSCORE {
+                    Cell::Ref(slot)
+                } else if let Some((_, c)) = vars.iter().find(|(n, _)| n == v) {
+                    *c
+                } else {
+                    vars.push((*v, Cell::Ref(slot)));
+                    Cell::Ref(slot)
+                }
+            }
+            Term::Compound(c) if depth > 0 => {
+                let p = self.heap.len() as u32;
+                self.heap.push(Cell::Fun(c.name, c.args.len() as u32));
+                for i in 0..c.args.len() {
+                    self.heap.push(Cell::Ref(p + 1 + i as u32));
+                }
+                for (i, a) in c.args.iter().enumerate() {
+                    self.put_shallow(p + 1 + i as u32, a, vars, depth - 1);
+                }
+                Cell::Ptr(p)
+            }
+            _ => self.put_deep(t, vars),
+        };
+        self.heap[slot as usize] = c;
+    }
+
+    /// The iterative copy behind [`Store::put_term`].
+    fn put_deep(&mut self, t: &Term, vars: &mut Vec<(Sym, Cell)>) -> Cell {
+        let root = self.heap.len() as u32;
+        self.heap.push(Cell::Ref(root));
         let mut work: Vec<(u32, &Term)> = vec![(root, t)];
         while let Some((slot, t)) = work.pop() {
             let c = match t {
