@@ -312,6 +312,27 @@ impl Store {
     /// the same left-to-right order, so variables are numbered alike.
     fn put_shallow(&mut self, slot: u32, t: &Term, vars: &mut Vec<(Sym, Cell)>, depth: u32) {
         let c = match t {
+            Term::Compound(c) if depth > 0 => {
+                let p = self.heap.len() as u32;
+                self.heap.push(Cell::Fun(c.name, c.args.len() as u32));
+                for i in 0..c.args.len() {
+                    self.heap.push(Cell::Ref(p + 1 + i as u32));
+                }
+                for (i, a) in c.args.iter().enumerate() {
+                    self.put_shallow(p + 1 + i as u32, a, vars, depth - 1);
+                }
+                Cell::Ptr(p)
+            }
+            _ => self.leaf_cell(slot, t, vars),
+        };
+        self.heap[slot as usize] = c;
+    }
+
+    /// The cell of an atomic term or variable placed in `slot` (a variable seen before shares
+    /// the cell of its first occurrence); a compound term is copied by [`Store::put_deep`].
+    #[inline]
+    fn leaf_cell(&mut self, slot: u32, t: &Term, vars: &mut Vec<(Sym, Cell)>) -> Cell {
+        match t {
             Term::Atom(s) => Cell::Atom(*s),
             Term::Int(i) => Cell::Int(*i),
             Term::Float(f) => Cell::Flt(f.0),
@@ -326,20 +347,8 @@ impl Store {
                     Cell::Ref(slot)
                 }
             }
-            Term::Compound(c) if depth > 0 => {
-                let p = self.heap.len() as u32;
-                self.heap.push(Cell::Fun(c.name, c.args.len() as u32));
-                for i in 0..c.args.len() {
-                    self.heap.push(Cell::Ref(p + 1 + i as u32));
-                }
-                for (i, a) in c.args.iter().enumerate() {
-                    self.put_shallow(p + 1 + i as u32, a, vars, depth - 1);
-                }
-                Cell::Ptr(p)
-            }
-            _ => self.put_deep(t, vars),
-        };
-        self.heap[slot as usize] = c;
+            Term::Compound(_) => self.put_deep(t, vars),
+        }
     }
 
     /// The iterative copy behind [`Store::put_term`].
@@ -349,20 +358,6 @@ impl Store {
         let mut work: Vec<(u32, &Term)> = vec![(root, t)];
         while let Some((slot, t)) = work.pop() {
             let c = match t {
-                Term::Atom(s) => Cell::Atom(*s),
-                Term::Int(i) => Cell::Int(*i),
-                Term::Float(f) => Cell::Flt(f.0),
-                Term::Str(s) => self.new_str(s.clone()),
-                Term::Var(v) => {
-                    if *v == wk::UNDERSCORE {
-                        Cell::Ref(slot)
-                    } else if let Some((_, c)) = vars.iter().find(|(n, _)| n == v) {
-                        *c
-                    } else {
-                        vars.push((*v, Cell::Ref(slot)));
-                        Cell::Ref(slot)
-                    }
-                }
                 Term::Compound(c) => {
                     let p = self.heap.len() as u32;
                     self.heap.push(Cell::Fun(c.name, c.args.len() as u32));
@@ -375,6 +370,7 @@ impl Store {
                     }
                     Cell::Ptr(p)
                 }
+                _ => self.leaf_cell(slot, t, vars),
             };
             self.heap[slot as usize] = c;
         }
