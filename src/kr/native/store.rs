@@ -440,24 +440,7 @@ impl Store {
             }
             let a = self.deref(a);
             let b = self.deref(b);
-            let o = Self::order_class(a).cmp(&Self::order_class(b));
-            if o != Ordering::Equal {
-                return o;
-            }
             let o = match (a, b) {
-                (Cell::Ref(x), Cell::Ref(y)) => x.cmp(&y),
-                (Cell::Int(x), Cell::Int(y)) => x.cmp(&y),
-                (Cell::Flt(x), Cell::Flt(y)) => x.total_cmp(&y),
-                (Cell::Int(x), Cell::Flt(y)) => Term::Int(x).compare(&Term::Float(Float(y))),
-                (Cell::Flt(x), Cell::Int(y)) => Term::Float(Float(x)).compare(&Term::Int(y)),
-                (Cell::Atom(x), Cell::Atom(y)) => {
-                    if x == y {
-                        Ordering::Equal
-                    } else {
-                        x.name().cmp(y.name())
-                    }
-                }
-                (Cell::Str(x), Cell::Str(y)) => self.strs[x as usize].cmp(&self.strs[y as usize]),
                 (Cell::Ptr(p), Cell::Ptr(q)) => {
                     if p == q {
                         continue;
@@ -481,7 +464,7 @@ impl Store {
                     }
                     o
                 }
-                _ => Ordering::Equal,
+                _ => self.compare_shallow(a, b),
             };
             if o != Ordering::Equal {
                 return o;

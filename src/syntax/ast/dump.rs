@@ -188,12 +188,7 @@ impl Dumper<'_> {
                 op,
                 query,
             } => {
-                let op = match op {
-                    MentalOp::Bel => "bel",
-                    MentalOp::Goal => "goal",
-                    MentalOp::AGoal => "a-goal",
-                    MentalOp::GoalA => "goal-a",
-                };
+                let op = op.keyword();
                 let inner = format!("{}{op}({})", selector_prefix(selector), query.term);
                 if *negated {
                     format!("not({inner})")

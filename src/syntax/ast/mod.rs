@@ -213,6 +213,18 @@ pub enum MentalOp {
     GoalA,
 }
 
+impl MentalOp {
+    /// The operator as written in a program.
+    pub fn keyword(self) -> &'static str {
+        match self {
+            MentalOp::Bel => "bel",
+            MentalOp::Goal => "goal",
+            MentalOp::AGoal => "a-goal",
+            MentalOp::GoalA => "goal-a",
+        }
+    }
+}
+
 /// A literal of a mental-state condition.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Literal {

@@ -2,9 +2,7 @@
 
 use super::ast::*;
 use crate::diag::{line_col, Span};
-use crate::syntax::ast::{
-    Action, ActionKind, Literal, LiteralKind, MentalOp, Mood, Selector, SelectorKind,
-};
+use crate::syntax::ast::{Action, ActionKind, Literal, LiteralKind, Mood, Selector, SelectorKind};
 use crate::syntax::prolog::Located;
 use std::fmt::Write;
 
@@ -147,12 +145,7 @@ fn literal(l: &Literal) -> String {
             op,
             query,
         } => {
-            let op = match op {
-                MentalOp::Bel => "bel",
-                MentalOp::Goal => "goal",
-                MentalOp::AGoal => "a-goal",
-                MentalOp::GoalA => "goal-a",
-            };
+            let op = op.keyword();
             let inner = format!("{}{op}({})", selector(s), query.term);
             if *negated {
                 format!("not({inner})")
