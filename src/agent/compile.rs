@@ -2,7 +2,7 @@
 //! variable renaming, name/arity resolution of actions and module calls, action specs renamed
 //! apart from rule variables.
 
-use super::kr_bridge::load_knowledge;
+use super::kr_bridge::{load_knowledge, Knowledge};
 use super::program::*;
 use crate::diag::{line_col, Diagnostic, Span};
 use crate::syntax::ast::{self, ExitCondition, Focus, Order};
@@ -10,10 +10,20 @@ use crate::term::{Subst, Sym, Term};
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-/// Compiles a parsed program with extra knowledge clauses.
-pub(crate) fn compile(
-    ast: &ast::AgentProgram,
-    source: &str,
+#[derive(Clone, Copy)]
+/// One module to compile with the file it was read from (its spans refer to `source`).
+pub(crate) struct Unit<'s> {
+    pub file: &'s str,
+    pub source: &'s str,
+    pub module: &'s ast::Module,
+}
+
+/// Compiles a parsed program with the modules of its imported `.mod2g` files and extra
+/// knowledge clauses (from imported `.pl` files).
+pub(crate) fn compile<'s>(
+    ast: &'s ast::AgentProgram,
+    source: &'s str,
+    imported: &[Unit<'s>],
     extra_knowledge: &[Term],
 ) -> Result<Arc<Program>, Vec<Diagnostic>> {
     let c = Compiler {
@@ -22,6 +32,7 @@ pub(crate) fn compile(
         errors: Vec::new(),
         warnings: Vec::new(),
         macros: BTreeMap::new(),
+        local_macros: BTreeMap::new(),
         fresh: 0,
         blocks: Vec::new(),
         modules: Vec::new(),
@@ -29,7 +40,17 @@ pub(crate) fn compile(
         callables: BTreeMap::new(),
         select_modules: Vec::new(),
     };
-    c.run(ast, extra_knowledge)
+    let mut units: Vec<Unit<'s>> = ast
+        .modules
+        .iter()
+        .map(|module| Unit {
+            file: &ast.file,
+            source,
+            module,
+        })
+        .collect();
+    units.extend(imported.iter().copied());
+    c.run(ast, &units, extra_knowledge)
 }
 
 type MacroDef = (Vec<Term>, Vec<ast::Literal>);
@@ -39,7 +60,10 @@ pub(crate) struct Compiler<'s> {
     source: &'s str,
     errors: Vec<Diagnostic>,
     warnings: Vec<Diagnostic>,
+    /// Macros of all modules: the first definition of each name/arity.
     macros: BTreeMap<(String, usize), MacroDef>,
+    /// Macros of the module being compiled: they come before those of other modules.
+    local_macros: BTreeMap<(String, usize), MacroDef>,
     fresh: u64,
     blocks: Vec<Block>,
     modules: Vec<ModuleDef>,
@@ -64,7 +88,7 @@ enum Callable {
 
 const MAX_MACRO_DEPTH: usize = 32;
 
-impl Compiler<'_> {
+impl<'s> Compiler<'s> {
     fn line(&self, span: &Span) -> usize {
         line_col(self.source, span.start).0
     }
@@ -81,26 +105,53 @@ impl Compiler<'_> {
         ));
     }
 
+    /// Makes diagnostics and line numbers refer to the file of `u`.
+    fn enter(&mut self, u: &Unit<'s>) {
+        self.file = u.file.to_string();
+        self.source = u.source;
+    }
+
+    /// Makes diagnostics refer to the program's own file again.
+    fn leave(&mut self, ast: &ast::AgentProgram, source: &'s str) {
+        self.file = ast.file.clone();
+        self.source = source;
+    }
+
+    /// The macros of one module, first definition of each name/arity.
+    fn module_macros(m: &ast::Module) -> BTreeMap<(String, usize), MacroDef> {
+        let mut out = BTreeMap::new();
+        if let Some(p) = &m.program {
+            for d in &p.macros {
+                let key = (d.name.name.name().to_string(), d.params.len());
+                let params = d.params.iter().map(|l| l.term.clone()).collect();
+                out.entry(key).or_insert((params, d.body.clone()));
+            }
+        }
+        out
+    }
+
     fn run(
         mut self,
         ast: &ast::AgentProgram,
+        units: &[Unit<'s>],
         extra: &[Term],
     ) -> Result<Arc<Program>, Vec<Diagnostic>> {
-        // Knowledge of every module forms one base; macros and action specs are global.
+        // Knowledge of every module forms one base; action specs are global; a macro is looked
+        // up in its own module first, then in the others (first definition wins).
+        let main_source = self.source;
         let mut clauses = extra.to_vec();
-        for m in &ast.modules {
+        for u in units {
+            self.enter(u);
+            let m = u.module;
             clauses.extend(m.knowledge.iter().map(|l| l.term.clone()));
-            if let Some(p) = &m.program {
-                for d in &p.macros {
-                    let key = (d.name.name.name().to_string(), d.params.len());
-                    let params = d.params.iter().map(|l| l.term.clone()).collect();
-                    self.macros.entry(key).or_insert((params, d.body.clone()));
-                }
+            for (k, v) in Self::module_macros(m) {
+                self.macros.entry(k).or_insert(v);
             }
             for s in &m.action_specs {
                 self.add_spec(s);
             }
         }
+        self.leave(ast, main_source);
         let knowledge = match load_knowledge(&clauses) {
             Ok(k) => k,
             Err(e) => {
@@ -113,65 +164,88 @@ impl Compiler<'_> {
             }
         };
         // Register module names first so that calls resolve regardless of order.
-        for m in &ast.modules {
-            let idx = self.modules.len();
-            let (kind, params) = match &m.kind {
-                ast::ModuleKind::Init => (ModuleKind::Init, Vec::new()),
-                ast::ModuleKind::Main => (ModuleKind::Main, Vec::new()),
-                ast::ModuleKind::Event => (ModuleKind::Event, Vec::new()),
-                ast::ModuleKind::User { params, .. } => (
-                    ModuleKind::User,
-                    params.iter().map(|l| l.term.clone()).collect(),
-                ),
-            };
-            let (exit, focus) = self.options(m, kind);
-            if focus == Focus::Select {
-                self.select_modules.push(idx);
-            }
-            if kind == ModuleKind::User {
-                let key = (m.name().to_string(), params.len());
-                if self.callables.contains_key(&key) {
-                    self.error(
-                        "E0401",
-                        format!("{}/{} is defined twice (module or action)", key.0, key.1),
-                        m.head_span.clone(),
-                    );
-                }
-                self.callables.insert(key, Callable::Module(idx));
-            }
-            self.modules.push(ModuleDef {
-                name: m.name().to_string(),
-                kind,
-                params,
-                exit,
-                focus,
-                beliefs: m.beliefs.iter().map(|l| l.term.clone()).collect(),
-                goals: m.goals.iter().map(|l| l.term.clone()).collect(),
-                block: 0,
-                line: self.line(&m.head_span),
-            });
+        for u in units {
+            self.enter(u);
+            self.register(u.module);
         }
-        for (idx, m) in ast.modules.iter().enumerate() {
-            let kind = self.modules[idx].kind;
-            let default = match kind {
-                ModuleKind::Init | ModuleKind::Event => Order::LinearAll,
-                _ => Order::Linear,
-            };
-            let (order, rules) = match &m.program {
-                Some(p) => (p.order.as_ref().map_or(default, |o| o.value), &p.rules[..]),
-                None => (default, &[][..]),
-            };
-            if order == Order::Adaptive {
-                let span = m
-                    .program
-                    .as_ref()
-                    .map_or(m.head_span.clone(), |p| p.span.clone());
-                self.warn("W0402", "order=adaptive runs as order=random", span);
-            }
-            let name = self.modules[idx].name.clone();
-            let block = self.block(&name, rules, order);
-            self.modules[idx].block = block;
+        for (idx, u) in units.iter().enumerate() {
+            self.enter(u);
+            self.local_macros = Self::module_macros(u.module);
+            self.module_block(idx, u.module);
         }
+        self.local_macros.clear();
+        self.leave(ast, main_source);
+        self.finish(ast, knowledge)
+    }
+
+    /// Adds module `m` (not yet its rules) and its name/arity.
+    fn register(&mut self, m: &ast::Module) {
+        let idx = self.modules.len();
+        let (kind, params) = match &m.kind {
+            ast::ModuleKind::Init => (ModuleKind::Init, Vec::new()),
+            ast::ModuleKind::Main => (ModuleKind::Main, Vec::new()),
+            ast::ModuleKind::Event => (ModuleKind::Event, Vec::new()),
+            ast::ModuleKind::User { params, .. } => (
+                ModuleKind::User,
+                params.iter().map(|l| l.term.clone()).collect(),
+            ),
+        };
+        let (exit, focus) = self.options(m, kind);
+        if focus == Focus::Select {
+            self.select_modules.push(idx);
+        }
+        if kind == ModuleKind::User {
+            let key = (m.name().to_string(), params.len());
+            if self.callables.contains_key(&key) {
+                self.error(
+                    "E0401",
+                    format!("{}/{} is defined twice (module or action)", key.0, key.1),
+                    m.head_span.clone(),
+                );
+            }
+            self.callables.insert(key, Callable::Module(idx));
+        }
+        self.modules.push(ModuleDef {
+            name: m.name().to_string(),
+            kind,
+            params,
+            exit,
+            focus,
+            beliefs: m.beliefs.iter().map(|l| l.term.clone()).collect(),
+            goals: m.goals.iter().map(|l| l.term.clone()).collect(),
+            block: 0,
+            line: self.line(&m.head_span),
+        });
+    }
+
+    /// Compiles the rules of module number `idx`.
+    fn module_block(&mut self, idx: usize, m: &ast::Module) {
+        let kind = self.modules[idx].kind;
+        let default = match kind {
+            ModuleKind::Init | ModuleKind::Event => Order::LinearAll,
+            _ => Order::Linear,
+        };
+        let (order, rules) = match &m.program {
+            Some(p) => (p.order.as_ref().map_or(default, |o| o.value), &p.rules[..]),
+            None => (default, &[][..]),
+        };
+        if order == Order::Adaptive {
+            let span = m
+                .program
+                .as_ref()
+                .map_or(m.head_span.clone(), |p| p.span.clone());
+            self.warn("W0402", "order=adaptive runs as order=random", span);
+        }
+        let name = self.modules[idx].name.clone();
+        let block = self.block(&name, rules, order);
+        self.modules[idx].block = block;
+    }
+
+    fn finish(
+        mut self,
+        ast: &ast::AgentProgram,
+        knowledge: Arc<Knowledge>,
+    ) -> Result<Arc<Program>, Vec<Diagnostic>> {
         let find = |k: ModuleKind, mods: &[ModuleDef]| mods.iter().position(|m| m.kind == k);
         let init = find(ModuleKind::Init, &self.modules);
         let event = find(ModuleKind::Event, &self.modules);
@@ -209,6 +283,7 @@ impl Compiler<'_> {
             all.extend(self.warnings);
             return Err(all);
         }
+        let uses_models = uses_models(&self.blocks);
         Ok(Arc::new(Program {
             file: self.file,
             source: Arc::from(self.source),
@@ -225,40 +300,18 @@ impl Compiler<'_> {
                 callables: self.callables,
             },
             uses_newpercept: mentions_newpercept(&ast.modules),
+            uses_models,
         }))
     }
 
+    /// The exit condition and focus of a module. Options that do not apply to the kind of
+    /// module are ignored here; the validator warns about them (W0108, W0109).
     fn options(&mut self, m: &ast::Module, kind: ModuleKind) -> (ExitCondition, Focus) {
         let exit = m.options.exit.as_ref();
         let focus = m.options.focus.as_ref();
         match kind {
-            ModuleKind::Init | ModuleKind::Event => {
-                if let Some(e) = exit {
-                    self.warn(
-                        "W0404",
-                        "exit is ignored for init and event modules",
-                        e.span.clone(),
-                    );
-                }
-                if let Some(f) = focus {
-                    self.warn(
-                        "W0405",
-                        "focus is only allowed on user modules",
-                        f.span.clone(),
-                    );
-                }
-                (ExitCondition::Always, Focus::None)
-            }
-            ModuleKind::Main => {
-                if let Some(f) = focus {
-                    self.warn(
-                        "W0405",
-                        "focus is only allowed on user modules",
-                        f.span.clone(),
-                    );
-                }
-                (exit.map_or(ExitCondition::Never, |e| e.value), Focus::None)
-            }
+            ModuleKind::Init | ModuleKind::Event => (ExitCondition::Always, Focus::None),
+            ModuleKind::Main => (exit.map_or(ExitCondition::Never, |e| e.value), Focus::None),
             ModuleKind::User => (
                 exit.map_or(ExitCondition::Always, |e| e.value),
                 focus.map_or(Focus::None, |f| f.value),
@@ -358,28 +411,29 @@ impl Compiler<'_> {
                     op,
                     query,
                 } => {
-                    let top_level = match selector.kind {
-                        ast::SelectorKind::This => false,
-                        ast::SelectorKind::SelfAgent => true,
-                        _ => {
-                            self.error(
-                                "E0407",
-                                "only the selectors this and self are supported on conditions",
-                                l.span.clone(),
-                            );
-                            false
+                    let top_level = selector.kind == ast::SelectorKind::SelfAgent;
+                    let about = match &selector.kind {
+                        ast::SelectorKind::This | ast::SelectorKind::SelfAgent => None,
+                        ast::SelectorKind::All => Some(About::All),
+                        ast::SelectorKind::AllOther => Some(About::AllOther),
+                        ast::SelectorKind::Some => Some(About::Some),
+                        ast::SelectorKind::SomeOther => Some(About::SomeOther),
+                        ast::SelectorKind::Agents(ts) => {
+                            Some(About::Agents(ts.iter().map(|t| s.apply(&t.term)).collect()))
                         }
                     };
                     out.push(Lit::Mental {
                         negated: *negated,
                         top_level,
+                        about,
                         op: *op,
                         query: s.apply(&query.term),
                     });
                 }
                 ast::LiteralKind::MacroUse { name, args } => {
                     let key = (name.name.name().to_string(), args.len());
-                    let Some((params, body)) = self.macros.get(&key).cloned() else {
+                    let found = self.local_macros.get(&key).or(self.macros.get(&key));
+                    let Some((params, body)) = found.cloned() else {
                         self.error(
                             "E0408",
                             format!("{}/{} is not a macro", key.0, key.1),
@@ -558,6 +612,15 @@ fn rename_literal(l: &ast::Literal, ren: &Subst) -> ast::Literal {
     l
 }
 
+/// True when some rule condition queries other agents' mental models.
+fn uses_models(blocks: &[Block]) -> bool {
+    blocks.iter().flat_map(|b| b.rules.iter()).any(|r| {
+        r.cond
+            .iter()
+            .any(|l| matches!(l, Lit::Mental { about: Some(_), .. }))
+    })
+}
+
 /// True when any term of the program mentions the name `newpercept`.
 fn mentions_newpercept(modules: &[ast::Module]) -> bool {
     let target = Sym::intern("newpercept");
@@ -618,6 +681,7 @@ pub(crate) fn extend(
         errors: Vec::new(),
         warnings: Vec::new(),
         macros: prog.names.macros.clone(),
+        local_macros: BTreeMap::new(),
         // Renamed macro variables must not meet the program's own.
         fresh: 1 << 32,
         blocks: prog.blocks.clone(),
@@ -670,6 +734,7 @@ pub(crate) fn extend(
             event: prog.event,
             warnings: Vec::new(),
             uses_newpercept: prog.uses_newpercept,
+            uses_models: prog.uses_models,
             names: prog.names.clone(),
         }),
         blocks,

@@ -4,7 +4,7 @@
 use super::error::Fault;
 use super::goals::Goal;
 use super::mental_state::MentalState;
-use super::program::Lit;
+use super::program::{About, Lit};
 use crate::syntax::ast::MentalOp;
 use crate::term::{Subst, Term};
 use std::collections::hash_map::DefaultHasher;
@@ -88,6 +88,7 @@ fn literal(cx: &CondCtx<'_>, lit: &Lit, theta: &Subst) -> Result<Vec<Subst>, Fau
     let Lit::Mental {
         negated,
         top_level,
+        about,
         op,
         query,
     } = lit
@@ -98,6 +99,11 @@ fn literal(cx: &CondCtx<'_>, lit: &Lit, theta: &Subst) -> Result<Vec<Subst>, Fau
     let ms = cx.ms;
     let mut raw = AnswerSet::default();
     match op {
+        // Selectors other than this/self query the mental models of other agents.
+        _ if about.is_some() => {
+            raw.items =
+                super::models::answers(ms, about.as_ref().unwrap_or(&About::All), *op, &q, theta)?
+        }
         MentalOp::Bel => raw.items = ms.bel(&q)?,
         MentalOp::Goal | MentalOp::AGoal | MentalOp::GoalA => {
             let single;

@@ -162,6 +162,7 @@ impl Agent {
         );
         let mut ms = ms;
         ms.record = config.trace >= TraceLevel::Changes;
+        ms.models.enabled = program.uses_models;
         Agent {
             program,
             core: Core {
@@ -319,7 +320,10 @@ impl Agent {
                 percept: p.to_string(),
             });
         }
-        if core.receive(messages) {
+        if core
+            .receive(messages)
+            .map_err(|e| core.error(&prog, None, e))?
+        {
             core.check_goals().map_err(|e| core.error(&prog, None, e))?;
         }
         let new = !percepts.is_empty() || !messages.is_empty() || self.acted_last;

@@ -6,6 +6,7 @@ use super::error::Fault;
 use super::goals::{AttentionStack, Goal, GoalBase};
 use super::kr_bridge::{Engine, FactBase, Knowledge, KrError, Limits, NativeEngine, View};
 use super::mailbox::{is_mail_fact, Mailbox};
+use super::models::Models;
 use super::percepts::PerceptBase;
 use super::trace::Event;
 use crate::term::{well_known as wk, Subst, Term};
@@ -29,6 +30,8 @@ pub struct MentalState {
     pub engine: RefCell<NativeEngine>,
     /// Record change events (off when the trace level is `Off`, to save the printing).
     pub record: bool,
+    /// Mental models of the other agents (kept when the program queries them).
+    pub models: Models,
 }
 
 /// The effect of an update on the belief base and mailbox.
@@ -59,7 +62,50 @@ impl MentalState {
             attention: AttentionStack::default(),
             engine: RefCell::new(NativeEngine::new(seed).with_limits(limits)),
             record: true,
+            models: Models::new(match me {
+                Term::Atom(a) => a.name().to_string(),
+                other => other.to_string(),
+            }),
         }
+    }
+
+    /// All answers of `q` against `facts` plus knowledge (a mental model's beliefs).
+    pub fn bel_in(&self, facts: &FactBase, q: &Term) -> Result<Vec<Subst>, Fault> {
+        let bases = [facts];
+        let view = View::beliefs(&self.knowledge, &bases);
+        self.run(|e| e.query(&view, q), q)
+    }
+
+    /// True when `q` holds in `facts` plus knowledge (a mental model's beliefs).
+    pub fn holds_in(&self, facts: &FactBase, q: &Term) -> Result<bool, Fault> {
+        let bases = [facts];
+        let view = View::beliefs(&self.knowledge, &bases);
+        self.run(|e| e.holds(&view, q), q)
+    }
+
+    /// Updates the model of `sender` from a received message (§8.4), then drops the goals of
+    /// that model that its beliefs achieve. Nothing happens unless models are kept, or for a
+    /// message from this agent itself.
+    pub fn update_model(&mut self, sender: &str, content: &Term) -> Result<(), Fault> {
+        if !self.models.enabled || sender == self.models.me {
+            return Ok(());
+        }
+        self.models.receive(sender, content);
+        let Some(model) = self.models.get(sender) else {
+            return Ok(());
+        };
+        let mut achieved = Vec::new();
+        for g in model.goals.goals() {
+            if self.holds_in(&model.beliefs, &g.term)? {
+                achieved.push(g.term.clone());
+            }
+        }
+        if !achieved.is_empty() {
+            if let Some(m) = self.models.get_mut(sender) {
+                m.goals.remove_where(|g| achieved.contains(&g.term));
+            }
+        }
+        Ok(())
     }
 
     /// All answers of `q` against the belief base (knowledge, beliefs, percepts, mail, agents).

@@ -20,6 +20,33 @@ pub fn wrap_mood(mood: Mood, content: Term) -> Term {
     }
 }
 
+/// The agent names that the terms `ts` of a selector stand for under `s` (atoms, strings and
+/// lists of them); an unbound variable is an error.
+pub fn agent_names(ts: &[Term], s: &Subst) -> Result<Vec<String>, Fault> {
+    let mut names = Vec::new();
+    let mut work: Vec<Term> = ts.iter().rev().map(|t| s.apply(t)).collect();
+    while let Some(t) = work.pop() {
+        match &t {
+            Term::Atom(a) if *a != wk::NIL => names.push(a.name().to_string()),
+            Term::Atom(_) => {}
+            Term::Str(x) => names.push(x.to_string()),
+            Term::Compound(_) if t.is_cons() => {
+                if let Some(items) = t.list_items() {
+                    work.extend(items.into_iter().rev());
+                }
+            }
+            Term::Var(v) => {
+                return Err(Fault {
+                    message: format!("variable {} in selector not bound", v.name()),
+                    binding: Some(show_subst(s)),
+                })
+            }
+            _ => return Err(Fault::new(format!("{t} does not name an agent"))),
+        }
+    }
+    Ok(names)
+}
+
 impl Core {
     /// The receiver names of a selector under `s`.
     fn receivers(&self, to: &Receivers, s: &Subst) -> Result<Vec<String>, Fault> {
@@ -34,28 +61,7 @@ impl Core {
                     .cloned(),
             ),
             Receivers::SelfAgent => names.push(self.name.clone()),
-            Receivers::Agents(ts) => {
-                let mut work: Vec<Term> = ts.iter().rev().map(|t| s.apply(t)).collect();
-                while let Some(t) = work.pop() {
-                    match &t {
-                        Term::Atom(a) if *a != wk::NIL => names.push(a.name().to_string()),
-                        Term::Atom(_) => {}
-                        Term::Str(x) => names.push(x.to_string()),
-                        Term::Compound(_) if t.is_cons() => {
-                            if let Some(items) = t.list_items() {
-                                work.extend(items.into_iter().rev());
-                            }
-                        }
-                        Term::Var(v) => {
-                            return Err(Fault {
-                                message: format!("variable {} in selector not bound", v.name()),
-                                binding: Some(show_subst(s)),
-                            })
-                        }
-                        _ => return Err(Fault::new(format!("{t} does not name an agent"))),
-                    }
-                }
-            }
+            Receivers::Agents(ts) => names = agent_names(ts, s)?,
         }
         Ok(names)
     }
@@ -121,11 +127,13 @@ impl Core {
         Ok(Outcome::Done { real: true })
     }
 
-    /// Stores incoming messages as `received(Sender, Content)`; true when there were any.
-    pub fn receive(&mut self, messages: &[Message]) -> bool {
+    /// Stores incoming messages as `received(Sender, Content)` and updates the senders' mental
+    /// models; true when there were any.
+    pub fn receive(&mut self, messages: &[Message]) -> Result<bool, Fault> {
         let record = self.level >= TraceLevel::Changes;
         let mut ev = Vec::new();
         for m in messages {
+            self.ms.update_model(&m.sender, &m.content)?;
             let f = received(&Term::atom(&m.sender), &m.content);
             if record {
                 if self.ms.mailbox.insert(f.clone()) {
@@ -138,6 +146,6 @@ impl Core {
             }
         }
         self.changes(ev);
-        !messages.is_empty()
+        Ok(!messages.is_empty())
     }
 }

@@ -18,9 +18,9 @@
 //!   over user-controlled nesting; a step budget turns endless module loops into errors.
 //! * Percepts are typed (`percepts.rs`); `percept/1` reads the typed base and `newpercept/1`
 //!   the raw batch of the current cycle.
-//! * Only the selectors `this` and `self` are supported on conditions (mental models of other
-//!   agents are not implemented); sends support `all`, `allother`, `self`, names, variables
-//!   and lists.
+//! * Conditions with selectors other than `this`/`self` query mental models of the other agents
+//!   (`models.rs`), which received messages update when the program uses such selectors; sends
+//!   support `all`, `allother`, `self`, names, variables and lists.
 
 pub mod action;
 mod compile;
@@ -30,9 +30,11 @@ pub mod directory;
 pub mod error;
 pub mod goals;
 pub mod kr_bridge;
+pub mod load;
 pub mod mailbox;
 pub mod mental_state;
 pub mod message;
+pub mod models;
 pub mod module;
 pub mod percepts;
 pub mod program;

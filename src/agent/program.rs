@@ -4,6 +4,7 @@
 use super::kr_bridge::Knowledge;
 use crate::diag::{line_col, Diagnostic};
 use crate::syntax::ast::{self, ExitCondition, Focus, MentalOp, Mood, Order};
+use crate::syntax::goal::imports::Imports;
 use crate::term::{Sym, Term};
 use std::sync::Arc;
 
@@ -58,9 +59,26 @@ pub enum Lit {
         negated: bool,
         /// `self.` (top-level goal base) rather than `this.` (current attention set).
         top_level: bool,
+        /// Other agents' mental models to query instead of this agent's own state.
+        about: Option<About>,
         op: MentalOp,
         query: Term,
     },
+}
+
+/// Whose mental models a condition literal queries (selectors other than `this`/`self`).
+#[derive(Clone, Debug, PartialEq)]
+pub enum About {
+    /// Every known agent, this one included: the same answer in all.
+    All,
+    /// Every other agent: the same answer in all.
+    AllOther,
+    /// Any known agent, this one included.
+    Some,
+    /// Any other agent.
+    SomeOther,
+    /// The named agents (terms, possibly variables bound earlier): the same answer in all.
+    Agents(Vec<Term>),
 }
 
 /// A rule ready to run.
@@ -158,6 +176,8 @@ pub struct Program {
     pub warnings: Vec<Diagnostic>,
     /// Some query mentions `newpercept` (so the raw batch must be kept as facts).
     pub uses_newpercept: bool,
+    /// Some condition queries other agents' mental models (so messages must update them).
+    pub uses_models: bool,
     /// Macros and callable names, kept to compile code from outside the program
     /// ([`Program::extend`]).
     pub(crate) names: super::compile::Names,
@@ -194,19 +214,30 @@ impl Program {
         Ok(p)
     }
 
-    /// Compiles a parsed program.
+    /// Compiles a parsed program (its imports are not read: see [`Program::compile_with`]).
     pub fn compile(ast: &ast::AgentProgram, source: &str) -> Result<Arc<Program>, Vec<Diagnostic>> {
-        Program::compile_with(ast, source, &[])
+        Program::compile_with(ast, source, &Imports::default())
     }
 
-    /// Compiles a parsed program with extra knowledge clauses (e.g. from imported `.pl` files,
-    /// which the caller reads: the agent layer does no I/O).
+    /// Compiles a parsed program with what its imports bring in: the modules of `.mod2g` files
+    /// and the clauses of `.pl` files (which join the knowledge). The caller reads the imports
+    /// (`syntax::goal::imports::read_imports`): the agent layer does no I/O.
     pub fn compile_with(
         ast: &ast::AgentProgram,
         source: &str,
-        extra_knowledge: &[Term],
+        imports: &Imports,
     ) -> Result<Arc<Program>, Vec<Diagnostic>> {
-        super::compile::compile(ast, source, extra_knowledge)
+        let units: Vec<super::compile::Unit<'_>> = imports
+            .modules
+            .iter()
+            .map(|m| super::compile::Unit {
+                file: &m.file,
+                source: &m.source,
+                module: &m.module,
+            })
+            .collect();
+        let knowledge: Vec<Term> = imports.knowledge.iter().map(|l| l.term.clone()).collect();
+        super::compile::compile(ast, source, &units, &knowledge)
     }
 
     /// Compiles action sequences and conditions written in `file` (e.g. a `.test2g` file, text

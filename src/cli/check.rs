@@ -1,6 +1,7 @@
 //! `goal check FILE... [--format json]`: parse and validate files, print diagnostics.
 
-use goal::syntax::check::{check_path_with_agents, FileReport};
+use goal::agent::load::check_path_with_agents;
+use goal::syntax::check::FileReport;
 use std::path::PathBuf;
 use std::process::ExitCode;
 

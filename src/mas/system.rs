@@ -185,26 +185,16 @@ type Compiled = (String, Arc<Program>, Vec<Problem>);
 /// Reads, parses, validates and compiles one agent file.
 fn compile_file(origin: &Origin, path: &str) -> Result<Compiled, Vec<Problem>> {
     let (file, text) = origin.read(path).map_err(|d| vec![Problem::bare(d)])?;
-    let src: Arc<str> = Arc::from(text.as_str());
-    let wrap = |d: Diagnostic| Problem {
-        diagnostic: d,
-        source: src.clone(),
+    // The same front end as `goal check`: imports, validation and compilation.
+    let loaded = crate::agent::load::load_goal(&file, &text, origin.base_dir());
+    let problems = loaded.diagnostics.into_iter().map(|s| Problem {
+        diagnostic: s.diagnostic,
+        source: s.source,
+    });
+    let Some(prog) = loaded.program else {
+        return Err(problems.filter(|p| p.diagnostic.is_error()).collect());
     };
-    let (ast, mut diags) = crate::syntax::goal::parse_goal(&file, &text);
-    if !diags.iter().any(Diagnostic::is_error) {
-        diags.extend(crate::syntax::validate::validate(&ast, origin.base_dir()));
-    }
-    if diags.iter().any(Diagnostic::is_error) {
-        return Err(diags
-            .into_iter()
-            .filter(Diagnostic::is_error)
-            .map(wrap)
-            .collect());
-    }
-    let prog =
-        Program::compile(&ast, &text).map_err(|ds| ds.into_iter().map(wrap).collect::<Vec<_>>())?;
-    let mut warnings: Vec<Problem> = diags.into_iter().map(wrap).collect();
-    warnings.extend(prog.warnings.iter().cloned().map(wrap));
+    let warnings: Vec<Problem> = problems.collect();
     Ok((file, prog, warnings))
 }
 

@@ -138,16 +138,23 @@ fn base_dir(path: &Path) -> &Path {
 
 /// Checks one file and, for a `.mas2g`, also the agent files it names that exist (each once).
 pub fn check_path_with_agents(path: &Path) -> Vec<FileReport> {
-    let report = check_path(path);
-    let mut out = Vec::new();
+    with_agents(path, |p| vec![check_path(p)])
+}
+
+/// Checks one file with `check` and, for a `.mas2g`, also the `.goal` agent files it names that
+/// exist (each once). `check` may return several reports for one file (its imported files).
+pub fn with_agents(path: &Path, check: impl Fn(&Path) -> Vec<FileReport>) -> Vec<FileReport> {
+    let mut out = check(path);
+    let Some(report) = out.first() else {
+        return out;
+    };
     if path.extension().and_then(|e| e.to_str()) == Some("mas2g") && !report.source.is_empty() {
         let (mas, _) = crate::syntax::mas2g::parse(&report.source, &report.file);
         for agent in crate::syntax::mas2g::check::agent_file_paths(&mas, base_dir(path)) {
             if agent.is_file() && agent.extension().and_then(|e| e.to_str()) == Some("goal") {
-                out.push(check_path(&agent));
+                out.extend(check(&agent));
             }
         }
     }
-    out.insert(0, report);
     out
 }

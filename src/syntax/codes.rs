@@ -1,6 +1,6 @@
 //! The table of diagnostic codes, one line each. Ranges: `E00xx`/`W00xx` lexing and parsing of
 //! `.goal`/`.mod2g`/`.pl` files and file access, `E01xx`/`W01xx` the validator, `E02xx`/`W02xx`
-//! `.mas2g` files, `E03xx`/`W03xx` `.test2g` files.
+//! `.mas2g` files, `E03xx`/`W03xx` `.test2g` files, `E04xx`/`W04xx` compiling a program to run it.
 
 /// `(code, meaning)` for every diagnostic code, sorted by code.
 #[rustfmt::skip]
@@ -68,11 +68,23 @@ pub const CODES: &[(&str, &str)] = &[
     ("E0309", "a test calls an action or module the tested agent does not have"),
     ("E0310", "a test uses a macro the tested agent does not define"),
     ("E0311", "a variable in an action that a test runs (never bound)"),
+    ("E0400", "the knowledge cannot be loaded into the Prolog engine"),
+    ("E0401", "two modules or action specs with one name/arity (found while compiling)"),
+    ("E0403", "the program has neither a `main` nor an `event` module (found while compiling)"),
+    ("E0406", "`listall` needs a variable (found while compiling)"),
+    ("E0408", "a macro is used but not defined (found while compiling)"),
+    ("E0409", "macros nest more than 32 deep"),
+    ("E0410", "the arguments of a macro use do not match its parameters"),
+    ("E0411", "a selector on `drop`, `insert` or `delete`, or one other than this/self on `adopt`"),
+    ("E0412", "`send` without a receiver: all, allother, self or agent names"),
+    ("E0413", "an action or module that does not exist (found while compiling)"),
     ("W0001", "duplicate section: only the first one is used"),
     ("W0002", "legacy send form (`bob.send(p)` or `send(bob, p)`)"),
     ("W0003", "unknown module option (ignored)"),
     ("W0004", "duplicate module option: the first one is used"),
     ("W0006", "empty nested rule block"),
+    ("W0010", "a space between a name and `(` in KR text: read as GOAL did, as a compound term"),
+    ("W0011", "text after a complete KR term: ignored, as GOAL did"),
     ("W0101", "an action spec is never used"),
     ("W0102", "a user module is never called"),
     ("W0103", "a macro is never used"),
@@ -96,6 +108,7 @@ pub const CODES: &[(&str, &str)] = &[
     ("W0209", "an agent name is launched by more than one instruction"),
     ("W0301", "duplicate named test in one agent block"),
     ("W0302", "an agent is tested in more than one block"),
+    ("W0402", "`order=adaptive` runs as `order=random`"),
 ];
 
 /// The meaning of a code, if it is known.

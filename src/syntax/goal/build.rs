@@ -86,10 +86,16 @@ impl<'s> Builder<'s> {
         Builder {
             src,
             file: file.to_string(),
-            reader: Reader::new(file),
+            reader: Reader::goal(file),
             diagnostics: Vec::new(),
             give_up: Rc::new(Cell::new(false)),
         }
+    }
+
+    /// The warnings of the KR reader (GOAL leniencies it accepted), moved to the diagnostics.
+    pub fn take_reader_warnings(&mut self) {
+        let w = std::mem::take(&mut self.reader.warnings);
+        self.diagnostics.extend(w);
     }
 
     fn text(&self, span: &Span) -> &'s str {
@@ -221,24 +227,25 @@ impl<'s> Builder<'s> {
             .get(1..quoted.len().saturating_sub(1))
             .unwrap_or("")
             .replace("\\\"", "\"");
-        let is_module = path.ends_with(".mod2g");
-        let kind = if is_module {
+        // A path without an extension means the kind expected here (`.mod2g` at the top level,
+        // a Prolog file in a module); the file is found by trying the known extensions.
+        let has_extension = std::path::Path::new(&path).extension().is_some();
+        let kind = if !has_extension {
+            expected
+        } else if path.ends_with(".mod2g") {
             ImportKind::Module
         } else {
             ImportKind::Prolog
         };
-        if kind != expected {
-            let (msg, hint) = match expected {
-                ImportKind::Module => (
-                    format!("only `.mod2g` module files can be imported at the top level, found {quoted}"),
-                    "import Prolog files inside a module: `init module { #import \"file.pl\". ... }`",
-                ),
-                ImportKind::Prolog => (
-                    format!("a module file ({quoted}) can only be imported at the top level"),
-                    "move this `#import` out of the module",
-                ),
-            };
-            self.error("E0031", msg, span.clone()).hint = Some(hint.into());
+        // A Prolog file imported at the top level joins the knowledge, like one imported in a
+        // module; a module file can only be imported at the top level.
+        if kind == ImportKind::Module && expected == ImportKind::Prolog {
+            self.error(
+                "E0031",
+                format!("a module file ({quoted}) can only be imported at the top level"),
+                span.clone(),
+            )
+            .hint = Some("move this `#import` out of the module".into());
         }
         Import { kind, path, span }
     }

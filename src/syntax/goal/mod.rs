@@ -6,6 +6,7 @@
 mod assemble;
 pub mod build;
 pub mod errors;
+pub mod imports;
 
 use crate::diag::Diagnostic;
 use crate::syntax::ast::{AgentProgram, Module};
@@ -28,6 +29,7 @@ pub fn parse_goal(file: &str, src: &str) -> (AgentProgram, Vec<Diagnostic>) {
     let mut b = Builder::new(src, file);
     lexer.give_up = b.give_up.clone();
     let result = grammar::AgentParser::new().parse(&mut b, &mut lexer);
+    b.take_reader_warnings();
     let mut diags = std::mem::take(&mut b.diagnostics);
     let items = match result {
         Ok(items) => items,

@@ -177,6 +177,19 @@ pub fn tokenize(
     offset: usize,
     anonymous: &mut u32,
 ) -> Result<Vec<(usize, Tok, usize)>, LexError> {
+    tokenize_with(text, offset, anonymous, None)
+}
+
+/// Like [`tokenize`]; with `spaced`, also reads `name (args)` (blanks between a plain name and
+/// `(`) as functional notation, as GOAL's own Prolog reader did, and records the span from the
+/// name to the `(` of each such place. Standard Prolog reads it as an error (or, for a prefix
+/// operator, as the operator applied to a bracketed term), so operator names are never joined.
+pub fn tokenize_with(
+    text: &str,
+    offset: usize,
+    anonymous: &mut u32,
+    mut spaced: Option<&mut Vec<Span>>,
+) -> Result<Vec<(usize, Tok, usize)>, LexError> {
     let mut out: Vec<(usize, Tok, usize)> = Vec::new();
     let mut lex = Raw::lexer(text);
     let mut depth = 0usize;
@@ -327,7 +340,20 @@ pub fn tokenize(
                 let glued = out
                     .last()
                     .is_some_and(|(_, t, e)| *e == start && matches!(t, Tok::Name(_)));
-                if glued {
+                let joined = !glued
+                    && spaced.is_some()
+                    && out.last().is_some_and(|(l, t, e)| {
+                        joinable_name(t, &text[l - offset..*e - offset])
+                            && text[*e - offset..span.start]
+                                .bytes()
+                                .all(|b| b.is_ascii_whitespace())
+                    });
+                if joined {
+                    if let (Some(list), Some((l, _, _))) = (spaced.as_deref_mut(), out.last()) {
+                        list.push(*l..end);
+                    }
+                }
+                if glued || joined {
                     if let Some((_, t, _)) = out.last_mut() {
                         if let Tok::Name(s) = t {
                             *t = Tok::Functor(*s);
@@ -366,6 +392,13 @@ pub fn tokenize(
         out.push((start, tok, end));
     }
     Ok(out)
+}
+
+/// A plain lower-case name that is no operator: standard Prolog has no reading of `name (`.
+fn joinable_name(tok: &Tok, slice: &str) -> bool {
+    matches!(tok, Tok::Name(_))
+        && slice.starts_with(|c: char| c.is_ascii_lowercase())
+        && !crate::term::ops::is_operator(slice)
 }
 
 /// Resolves escape sequences and doubled quotes in the body of a quoted item.

@@ -59,7 +59,16 @@ pub struct Located {
 pub struct Reader {
     file: String,
     next_anonymous: u32,
+    /// Read GOAL's leniencies (see [`Reader::goal`]).
+    goal_compat: bool,
+    /// Warnings about leniencies used so far (only in GOAL-compatible mode).
+    pub warnings: Vec<Diagnostic>,
 }
+
+/// Code of the warning for `name (args)`: a space between a name and its `(`.
+pub const SPACED_FUNCTOR: &str = "W0010";
+/// Code of the warning for text after a complete term that GOAL ignored.
+pub const TRAILING_TEXT: &str = "W0011";
 
 type Spanned = (usize, Tok, usize);
 
@@ -69,6 +78,18 @@ impl Reader {
         Reader {
             file: file.into(),
             next_anonymous: 0,
+            goal_compat: false,
+            warnings: Vec::new(),
+        }
+    }
+
+    /// A reader for KR text of GOAL agent files, which accepts what GOAL's own reader accepted,
+    /// each time with a warning in [`Reader::warnings`]: `name (args)` with blanks before the
+    /// `(`, and text after a complete single term (`pre { p(X)) }`), which GOAL ignored.
+    pub fn goal(file: impl Into<String>) -> Reader {
+        Reader {
+            goal_compat: true,
+            ..Reader::new(file)
         }
     }
 
@@ -79,9 +100,50 @@ impl Reader {
         if tokens.is_empty() {
             return Err(self.empty(offset, text.len()));
         }
-        grammar::TermParser::new()
-            .parse(tokens)
-            .map_err(|e| self.parse_error(e, offset + text.len()))
+        let end = offset + text.len();
+        match grammar::TermParser::new().parse(tokens.clone()) {
+            Ok(t) => Ok(t),
+            Err(e) => match self.term_before_trailing(&tokens, &e) {
+                Some(t) => Ok(t),
+                None => Err(self.parse_error(e, end)),
+            },
+        }
+    }
+
+    /// In GOAL-compatible mode, when a single term is followed by tokens that cannot continue
+    /// it (GOAL's reader stopped after the term and ignored the rest): the term, with a warning
+    /// pointing at the ignored text.
+    fn term_before_trailing(
+        &mut self,
+        tokens: &[Spanned],
+        e: &ParseError<usize, Tok, item::ItemError>,
+    ) -> Option<Located> {
+        let at = match e {
+            ParseError::UnrecognizedToken { token, .. } | ParseError::ExtraToken { token } => {
+                token.0
+            }
+            _ => return None,
+        };
+        let cut = tokens.iter().position(|(l, _, _)| *l == at)?;
+        if !self.goal_compat || cut == 0 {
+            return None;
+        }
+        let t = grammar::TermParser::new()
+            .parse(tokens[..cut].to_vec())
+            .ok()?;
+        let ignored = at..tokens.last().map_or(at, |(_, _, r)| *r);
+        self.warnings.push(
+            Diagnostic::warning(
+                TRAILING_TEXT,
+                "text after the end of the term is ignored",
+                self.file.clone(),
+                ignored,
+            )
+            .with_hint(
+                "GOAL ignored this text without a word; standard Prolog rejects it: remove it",
+            ),
+        );
+        Some(t)
     }
 
     /// Reads a comma-separated list of terms (priority 999 each): action and module arguments.
@@ -158,13 +220,32 @@ impl Reader {
     }
 
     fn tokens(&mut self, text: &str, offset: usize) -> Result<Vec<Spanned>, Diagnostic> {
-        lexer::tokenize(text, offset, &mut self.next_anonymous).map_err(|e: LexError| {
-            let d = Diagnostic::error(SYNTAX_ERROR, e.message, self.file.clone(), e.span);
-            match e.hint {
-                Some(h) => d.with_hint(h),
-                None => d,
-            }
-        })
+        let mut spaced = Vec::new();
+        let list = self.goal_compat.then_some(&mut spaced);
+        let tokens = lexer::tokenize_with(text, offset, &mut self.next_anonymous, list).map_err(
+            |e: LexError| {
+                let d = Diagnostic::error(SYNTAX_ERROR, e.message, self.file.clone(), e.span);
+                match e.hint {
+                    Some(h) => d.with_hint(h),
+                    None => d,
+                }
+            },
+        )?;
+        for span in spaced {
+            let name = text[span.start - offset..span.end - offset - 1].trim_end();
+            self.warnings.push(
+                Diagnostic::warning(
+                    SPACED_FUNCTOR,
+                    format!("a space between `{name}` and `(`: read as `{name}(...)`, as GOAL did"),
+                    self.file.clone(),
+                    span,
+                )
+                .with_hint(format!(
+                    "standard Prolog (SWI-Prolog) rejects `{name} (` as a syntax error; write `{name}(` without the space"
+                )),
+            );
+        }
+        Ok(tokens)
     }
 
     fn empty(&self, offset: usize, len: usize) -> Diagnostic {

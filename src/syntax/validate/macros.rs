@@ -7,6 +7,29 @@ use crate::syntax::ast::{LiteralKind, Macro};
 use crate::term::Term;
 use std::collections::BTreeSet;
 
+/// A macro defined twice in one module. Macros are scoped per module (a use finds its own
+/// module's macro first), so one name in two modules is allowed, as in GOAL.
+fn duplicates(ctx: &mut Ctx<'_>) {
+    let mut twice = Vec::new();
+    for m in &ctx.modules {
+        let mut seen = BTreeSet::new();
+        for d in m.program.iter().flat_map(|p| p.macros.iter()) {
+            let key = (d.name.name.name().to_string(), d.params.len());
+            if !seen.insert(key.clone()) {
+                twice.push((key, d.name.span.clone()));
+            }
+        }
+    }
+    for ((name, arity), span) in twice {
+        ctx.error(
+            "E0117",
+            format!("macro `{name}/{arity}` is defined more than once in this module"),
+            span,
+            "rename or remove one definition",
+        );
+    }
+}
+
 /// Runs the macro checks.
 pub fn check(ctx: &mut Ctx<'_>) {
     let index: Vec<(Key, Vec<&Macro>)> = ctx
@@ -19,15 +42,8 @@ pub fn check(ctx: &mut Ctx<'_>) {
         .into_iter()
         .filter_map(macro_use_key)
         .collect();
+    duplicates(ctx);
     for ((name, arity), defs) in &index {
-        for d in &defs[1..] {
-            ctx.error(
-                "E0117",
-                format!("macro `{name}/{arity}` is defined more than once"),
-                d.name.span.clone(),
-                "macros are global to the program; rename or remove one definition",
-            );
-        }
         for d in defs {
             well_formed(ctx, d);
         }

@@ -15,10 +15,10 @@ mod variables;
 
 use crate::diag::{Diagnostic, Span};
 use crate::syntax::ast::{
-    Action, ActionKind, ActionSpec, AgentProgram, ImportKind, Literal, LiteralKind, Macro, Module,
-    ModuleKind, Rule, RuleBody,
+    Action, ActionKind, ActionSpec, AgentProgram, Literal, LiteralKind, Macro, Module, ModuleKind,
+    Rule, RuleBody,
 };
-use crate::syntax::prolog::{Located, Reader};
+use crate::syntax::prolog::Located;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
@@ -179,46 +179,15 @@ pub fn validate_module_file(
 }
 
 fn run(program: &AgentProgram, base_dir: Option<&Path>, module_file: bool) -> Vec<Diagnostic> {
-    let mut diags = Vec::new();
-    let mut imported_modules: Vec<Module> = Vec::new();
-    let mut imported_knowledge: Vec<Located> = Vec::new();
+    let imports = match base_dir {
+        Some(dir) => crate::syntax::goal::imports::read_imports(program, dir),
+        None => Default::default(),
+    };
+    // Problems inside imported files are reported when those files are checked themselves.
+    let diags = imports.missing;
+    let imported_modules: Vec<Module> = imports.modules.into_iter().map(|m| m.module).collect();
+    let imported_knowledge = imports.knowledge;
     let file = program.file.as_str();
-    let all_imports = program
-        .imports
-        .iter()
-        .chain(program.modules.iter().flat_map(|m| m.imports.iter()));
-    for import in all_imports {
-        let Some(dir) = base_dir else { break };
-        let path = dir.join(&import.path);
-        if !path.is_file() {
-            diags.push(
-                Diagnostic::error(
-                    "E0120",
-                    format!("imported file `{}` not found", import.path),
-                    file,
-                    import.span.clone(),
-                )
-                .with_hint("the path is relative to the directory of the importing file"),
-            );
-            continue;
-        }
-        // Problems inside the imported file are reported when that file is checked itself.
-        let Ok(text) = crate::syntax::check::read_source(&path) else {
-            continue;
-        };
-        let name = path.display().to_string();
-        match import.kind {
-            ImportKind::Module => {
-                if let (Some(m), _) = crate::syntax::goal::parse_mod2g(&name, &text) {
-                    imported_modules.push(m);
-                }
-            }
-            ImportKind::Prolog => {
-                // Spans of imported clauses refer to the imported file: only names are used.
-                imported_knowledge.extend(Reader::new(name).clauses(&text, 0).0);
-            }
-        }
-    }
     let mut ctx = Ctx {
         program,
         file,
