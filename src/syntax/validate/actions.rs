@@ -16,18 +16,27 @@ pub fn check(ctx: &mut Ctx<'_>) {
     after_exit(ctx);
 }
 
-/// Reports parameters that occur twice (`what` is "action" or "module").
+/// Reports parameters that occur twice (`what` is "action" or "module"): an error in an action
+/// spec, a warning in a module head.
 pub fn duplicate_params(ctx: &mut Ctx<'_>, params: &[Located], what: &str) {
     let mut seen = VarSet::new();
     for p in params {
         if let crate::term::Term::Var(v) = &p.term {
-            if !seen.insert(*v) && !is_anonymous(*v) {
-                ctx.error(
-                    "E0106",
-                    format!("parameter `{}` occurs twice in the {what} head", v.name()),
-                    p.spans.span.clone(),
-                    "parameters must be distinct variables",
+            if seen.insert(*v) || is_anonymous(*v) {
+                continue;
+            }
+            let msg = format!("parameter `{}` occurs twice in the {what} head", v.name());
+            let span = p.spans.span.clone();
+            if what == "module" {
+                // GOAL accepted this: a call then needs equal arguments for the two places.
+                ctx.warning(
+                    "W0113",
+                    msg,
+                    span,
+                    "a call must pass equal arguments here, or it stops the agent; use distinct variables",
                 );
+            } else {
+                ctx.error("E0106", msg, span, "parameters must be distinct variables");
             }
         }
     }
