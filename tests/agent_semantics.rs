@@ -752,3 +752,80 @@ fn bel_conjunctions_with_negation_keep_prolog_answers_and_order() {
     );
     assert_eq!(step(&mut a, &["tick"], &[]).printed, ["4/c", "cut(4)"]);
 }
+
+/// A message from `from` to agent `a` with (mood-wrapped) content `text`.
+fn msg(from: &str, text: &str) -> goal::agent::Message {
+    goal::agent::Message {
+        sender: from.into(),
+        receiver: "a".into(),
+        content: t(text),
+    }
+}
+
+/// Everything printed in a step with `msgs` and the cycles after it that the agent needs.
+fn printed_after(a: &mut goal::agent::Agent, msgs: &[goal::agent::Message]) -> Vec<String> {
+    let mut outs = vec![step(a, &[], msgs)];
+    outs.extend(run(a, 6));
+    printed(&outs)
+}
+
+#[test]
+fn messages_update_the_mental_model_of_their_sender() {
+    let src = "main module { program [order=linearall] {
+        forall (b).bel(at(R)), not(bel(said(at(R)))) do print(at(R)) + insert(said(at(R))).
+        forall (b).a-goal(has(X)), not(bel(said(want(X)))) do print(want(X)) + insert(said(want(X))).
+        forall (b).goal-a(has(X)), not(bel(said(got(X)))) do print(got(X)) + insert(said(got(X))).
+        forall not((b).bel(at(r1))), bel(said(at(r1))), not(bel(said(gone))) do print(gone) + insert(said(gone)).
+    } }";
+    let mut a = agent_with(src, "a", &["b"], 1);
+    // Indicative: a belief; imperative: a goal of the sender (not yet achieved).
+    let p = printed_after(&mut a, &[msg("b", "at(r1)"), msg("b", "imp(has(box))")]);
+    assert_eq!(p, ["at(r1)", "want(box)"]);
+    // Interrogative: the sender does not know it. An indicative `has(box)` achieves the goal,
+    // which is then dropped from the model (blind commitment), so goal-a never holds.
+    let p = printed_after(&mut a, &[msg("b", "int(at(r1))"), msg("b", "has(box)")]);
+    assert_eq!(p, ["gone"]);
+}
+
+#[test]
+fn all_needs_every_model_and_some_any() {
+    let src = "main module { program [order=linearall] {
+        forall allother.bel(p(X)), not(bel(seen(allother(X)))) do print(allother(X)) + insert(seen(allother(X))).
+        forall someother.bel(p(X)), not(bel(seen(some(X)))) do print(someother(X)) + insert(seen(some(X))).
+        forall all.bel(p(X)), not(bel(seen(all(X)))) do print(all(X)) + insert(seen(all(X))).
+        forall (b, c).bel(p(X)), not(bel(seen(both(X)))) do print(both(X)) + insert(seen(both(X))).
+    } }";
+    let mut a = agent_with(src, "a", &["b", "c"], 1);
+    let mut p = printed_after(&mut a, &[msg("b", "p(1), p(2)"), msg("c", "p(2), p(3)")]);
+    p.sort();
+    // `all` includes `a` itself, which believes no p/1.
+    assert_eq!(
+        p,
+        [
+            "allother(2)",
+            "both(2)",
+            "someother(1)",
+            "someother(2)",
+            "someother(3)"
+        ]
+    );
+}
+
+#[test]
+fn models_are_only_kept_by_programs_that_query_them() {
+    let plain = agent_with(
+        "main module { program { if bel(true) then print(x). } }",
+        "a",
+        &["b"],
+        1,
+    );
+    assert!(!plain.mental_state().models.enabled);
+    let mut with = agent_with(
+        "main module { program { if (b).bel(q) then print(q). } }",
+        "a",
+        &["b"],
+        1,
+    );
+    assert!(with.mental_state().models.enabled);
+    assert_eq!(printed_after(&mut with, &[msg("b", "q")])[0], "q");
+}
