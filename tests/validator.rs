@@ -278,3 +278,21 @@ fn module_files_get_the_checks_that_need_no_importing_program() {
         ]
     );
 }
+
+#[test]
+fn newpercept_is_a_predicate_every_agent_has() {
+    assert!(codes(&main_with(
+        "if true then print(x). forall bel(newpercept(P)) do print(P)."
+    ))
+    .is_empty());
+}
+
+#[test]
+fn one_macro_name_in_two_modules_is_no_duplicate() {
+    let two =
+        "main module { beliefs { p(1). } program {\n#define ok bel(p(1)).\nif ok then m. } }\n\
+               module m { program {\n#define ok bel(p(1)).\nif ok then print(m). } }\n";
+    assert!(codes(two).is_empty(), "{:?}", codes(two));
+    let one = "main module { beliefs { p(1). } program {\n#define ok bel(p(1)).\n#define ok bel(p(1)).\nif ok then print(x). } }\n";
+    assert_eq!(codes(one), ["E0117 3:9"]);
+}

@@ -163,9 +163,11 @@ const BUILTINS: &[(&str, Option<usize>)] = &[
     ("tab", Some(1)),
 ];
 
-/// Predicates every agent has: percepts, mail, and the agent facts (§3.1).
+/// Predicates every agent has: percepts (`newpercept/1`: the batch of this cycle), mail, and the
+/// agent facts (§3.1).
 const RESERVED: &[(&str, usize)] = &[
     ("percept", 1),
+    ("newpercept", 1),
     ("received", 2),
     ("sent", 2),
     ("agent", 1),
