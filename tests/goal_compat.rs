@@ -179,3 +179,15 @@ fn incorrect_programs_are_refused_by_check_and_run_alike() {
         insta::assert_snapshot!(format!("incorrect_{}", f.trim_end_matches(".goal")), diags);
     }
 }
+
+#[test]
+fn test_files_and_prolog_files_read_kr_text_as_agent_files_do() {
+    let (code, diags) = check("spaced_assert.test2g");
+    assert_eq!(code, 0, "{diags}");
+    insta::assert_snapshot!("spaced_assert", diags);
+    let (code, out, _) = goal(&["test", "spaced_assert.test2g"]);
+    assert_eq!(code, 0, "{out}");
+    let (code, diags) = check("spaced.pl");
+    assert_eq!(code, 0, "{diags}");
+    assert!(diags.contains("warning[W0010]"), "{diags}");
+}

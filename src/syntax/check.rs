@@ -100,7 +100,10 @@ pub fn check_path(path: &Path) -> FileReport {
             d
         }
         "pl" => {
-            let (clauses, mut d) = Reader::new(file.as_str()).clauses(&source, 0);
+            // Read as GOAL reads imported Prolog files (its leniencies with warnings).
+            let mut reader = Reader::goal(file.as_str());
+            let (clauses, mut d) = reader.clauses(&source, 0);
+            d.append(&mut reader.warnings);
             d.extend(crate::syntax::validate::validate_prolog(&clauses, &file));
             d
         }

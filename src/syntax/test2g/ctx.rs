@@ -36,7 +36,8 @@ impl<'s> Ctx<'s> {
         Ctx {
             src,
             file: file.to_string(),
-            reader: Reader::new(file),
+            // GOAL's leniencies in KR text, with warnings, as in `.goal` files.
+            reader: Reader::goal(file),
             diags: Vec::new(),
             recovered: Vec::new(),
         }

@@ -33,6 +33,7 @@ pub fn parse(source: &str, file: &str) -> (Option<MasTest>, Vec<Diagnostic>) {
         grammar::MasTestParser::new().parse(&mut ctx, tokens.into_iter().map(Ok::<_, Diagnostic>));
     let recovered = std::mem::take(&mut ctx.recovered);
     diags.append(&mut ctx.diags);
+    diags.append(&mut ctx.reader.warnings);
     for e in recovered {
         diags.push(syntax_error(e.error, source, file));
     }
