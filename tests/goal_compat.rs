@@ -191,3 +191,19 @@ fn test_files_and_prolog_files_read_kr_text_as_agent_files_do() {
     assert_eq!(code, 0, "{diags}");
     assert!(diags.contains("warning[W0010]"), "{diags}");
 }
+
+#[test]
+fn blocks_world_examples_and_ping_pong_pass_their_tests() {
+    let (code, out, err) = goal(&[
+        "test",
+        "blocksworld/tower.test2g",
+        "blocksworld/flatten.test2g",
+        "../../../agents/blocksworld/stacker.test2g",
+        "../../../agents/pingpong/pingpong.test2g",
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    for name in ["buildsTower", "flattens", "rally"] {
+        assert!(out.contains(name), "{out}");
+    }
+    assert!(!out.contains("FAILED"), "{out}");
+}
