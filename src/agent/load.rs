@@ -42,7 +42,7 @@ pub fn load_goal(file: &str, text: &str, base_dir: Option<&Path>) -> Loaded {
         });
     }
     if !diags.iter().any(Diagnostic::is_error) {
-        diags.extend(crate::syntax::validate::validate(&ast, base_dir));
+        diags.extend(crate::syntax::validate::validate_with(&ast, &imports));
     }
     let clean = !diags.iter().any(Diagnostic::is_error)
         && !imported.iter().any(|s| s.diagnostic.is_error());

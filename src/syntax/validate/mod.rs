@@ -18,6 +18,7 @@ use crate::syntax::ast::{
     Action, ActionKind, ActionSpec, AgentProgram, Literal, LiteralKind, Macro, Module, ModuleKind,
     Rule, RuleBody,
 };
+use crate::syntax::goal::imports::Imports;
 use crate::syntax::prolog::Located;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -159,7 +160,19 @@ pub fn validate_prolog(clauses: &[Located], file: &str) -> Vec<Diagnostic> {
 /// Validates `program`; `base_dir` is the directory that `#import` paths are relative to (no
 /// file checks when `None`). Returns every error and warning, sorted by position.
 pub fn validate(program: &AgentProgram, base_dir: Option<&Path>) -> Vec<Diagnostic> {
-    run(program, base_dir, false)
+    run(program, &read(program, base_dir), false)
+}
+
+/// Validates `program` with its imports already read (see `syntax::goal::imports`).
+pub fn validate_with(program: &AgentProgram, imports: &Imports) -> Vec<Diagnostic> {
+    run(program, imports, false)
+}
+
+fn read(program: &AgentProgram, base_dir: Option<&Path>) -> Imports {
+    match base_dir {
+        Some(dir) => crate::syntax::goal::imports::read_imports(program, dir),
+        None => Imports::default(),
+    }
 }
 
 /// Validates a `.mod2g` module file on its own: the checks that do not need the program that
@@ -175,18 +188,14 @@ pub fn validate_module_file(
         imports: Vec::new(),
         span: module.span.clone(),
     };
-    run(&program, base_dir, true)
+    run(&program, &read(&program, base_dir), true)
 }
 
-fn run(program: &AgentProgram, base_dir: Option<&Path>, module_file: bool) -> Vec<Diagnostic> {
-    let imports = match base_dir {
-        Some(dir) => crate::syntax::goal::imports::read_imports(program, dir),
-        None => Default::default(),
-    };
+fn run(program: &AgentProgram, imports: &Imports, module_file: bool) -> Vec<Diagnostic> {
     // Problems inside imported files are reported when those files are checked themselves.
-    let diags = imports.missing;
-    let imported_modules: Vec<Module> = imports.modules.into_iter().map(|m| m.module).collect();
-    let imported_knowledge = imports.knowledge;
+    let diags = imports.missing.clone();
+    let imported_modules: Vec<&Module> = imports.modules.iter().map(|m| &m.module).collect();
+    let imported_knowledge = imports.knowledge.clone();
     let file = program.file.as_str();
     let mut ctx = Ctx {
         program,
