@@ -207,3 +207,11 @@ fn blocks_world_examples_and_ping_pong_pass_their_tests() {
     }
     assert!(!out.contains("FAILED"), "{out}");
 }
+
+#[test]
+fn a_test_may_call_a_module_the_agent_imports() {
+    let (code, diags) = check("import_late.test2g");
+    assert_eq!((code, diags.as_str()), (0, ""));
+    let (code, out, err) = goal(&["test", "import_late.test2g"]);
+    assert_eq!(code, 0, "{out}{err}");
+}

@@ -20,8 +20,12 @@ struct Offers {
 fn offers(path: &Path) -> Option<Offers> {
     let text = crate::syntax::check::read_source(path).ok()?;
     let (program, _) = crate::syntax::goal::parse_goal(&path.display().to_string(), &text);
+    // Modules of imported `.mod2g` files are the program's too.
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let imports = crate::syntax::goal::imports::read_imports(&program, dir);
     let mut o = Offers::default();
-    for m in &program.modules {
+    let imported = imports.modules.iter().map(|m| &m.module);
+    for m in program.modules.iter().chain(imported) {
         if let ModuleKind::User { name, params } = &m.kind {
             o.callable
                 .insert((name.name.name().to_string(), params.len()));
