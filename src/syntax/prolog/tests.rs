@@ -213,3 +213,40 @@ fn printing_then_reading_gives_the_same_term() {
         }
     }
 }
+
+#[test]
+fn goal_reader_joins_a_name_and_a_spaced_bracket_with_a_warning() {
+    let mut r = Reader::goal("f");
+    let t = r.term("p(room (X), not (q))", 0).expect("read");
+    assert_eq!(t.term.to_string(), "p(room(X),not(q))");
+    let spans: Vec<_> = r
+        .warnings
+        .iter()
+        .map(|d| (d.code.as_str(), d.span.clone()))
+        .collect();
+    assert_eq!(spans, [(SPACED_FUNCTOR, 2..8), (SPACED_FUNCTOR, 12..17)]);
+    // Names that are operators, graphic names and names inside quotes are not joined.
+    let mut r = Reader::goal("f");
+    assert_eq!(
+        r.term("X is (1)", 0).expect("read").term.to_string(),
+        "X is 1"
+    );
+    assert!(r.term("'a b' (c)", 0).is_err());
+    assert!(r.warnings.is_empty());
+}
+
+#[test]
+fn goal_reader_ignores_text_after_a_term_with_a_warning() {
+    let mut r = Reader::goal("f");
+    let t = r.term("a, not(b)) ) c", 0).expect("read");
+    assert_eq!(t.term.to_string(), "a,not(b)");
+    assert_eq!(r.warnings.len(), 1);
+    assert_eq!(
+        (r.warnings[0].code.as_str(), r.warnings[0].span.clone()),
+        (TRAILING_TEXT, 9..14)
+    );
+    // Clause lists and the standard reader stay strict.
+    assert!(Reader::new("f").term("a)", 0).is_err());
+    let (_, errors) = Reader::goal("f").clauses("a). b.", 0);
+    assert_eq!(errors.len(), 1);
+}
