@@ -84,7 +84,7 @@ pub const CODES: &[(&str, &str)] = &[
     ("W0004", "duplicate module option: the first one is used"),
     ("W0006", "empty nested rule block"),
     ("W0010", "a space between a name and `(` in KR text: read as GOAL did, as a compound term"),
-    ("W0011", "text after a complete KR term: ignored, as GOAL did"),
+    ("W0011", "an unmatched closing bracket after a complete KR term: it and the rest are ignored, as GOAL did"),
     ("W0101", "an action spec is never used"),
     ("W0102", "a user module is never called"),
     ("W0103", "a macro is never used"),

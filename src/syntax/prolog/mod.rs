@@ -110,8 +110,8 @@ impl Reader {
         }
     }
 
-    /// In GOAL-compatible mode, when a single term is followed by tokens that cannot continue
-    /// it (GOAL's reader stopped after the term and ignored the rest): the term, with a warning
+    /// In GOAL-compatible mode, when a single term is followed by an unmatched closing bracket
+    /// (GOAL's reader stopped after the term and ignored the rest): the term, with a warning
     /// pointing at the ignored text.
     fn term_before_trailing(
         &mut self,
@@ -125,7 +125,10 @@ impl Reader {
             _ => return None,
         };
         let cut = tokens.iter().position(|(l, _, _)| *l == at)?;
-        if !self.goal_compat || cut == 0 {
+        // Only an unmatched closing bracket starts ignored text (`p(X))`): other tokens after
+        // a term are more likely a missing operator, which the syntax error explains better.
+        let closing = matches!(tokens[cut].1, Tok::Close | Tok::RBracket | Tok::RBrace);
+        if !self.goal_compat || cut == 0 || !closing {
             return None;
         }
         let t = grammar::TermParser::new()

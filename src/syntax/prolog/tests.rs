@@ -245,7 +245,8 @@ fn goal_reader_ignores_text_after_a_term_with_a_warning() {
         (r.warnings[0].code.as_str(), r.warnings[0].span.clone()),
         (TRAILING_TEXT, 9..14)
     );
-    // Clause lists and the standard reader stay strict.
+    // A missing operator stays an error; so do clause lists and the standard reader.
+    assert!(Reader::goal("f").term("a b", 0).is_err());
     assert!(Reader::new("f").term("a)", 0).is_err());
     let (_, errors) = Reader::goal("f").clauses("a). b.", 0);
     assert_eq!(errors.len(), 1);
