@@ -133,13 +133,19 @@ fn condition(ctx: &mut Ctx<'_>, lits: &[Literal], bound: &VarSet) -> VarSet {
             }
             LiteralKind::MacroUse { name, args } => {
                 let key = (name.name.name().to_string(), args.len());
-                // A macro binds the arguments whose parameters its body binds; an unknown
-                // macro (imported, or reported as undefined) is assumed to bind them all.
-                let binds = ctx.macro_index.get(&key).and_then(|d| d.first()).map(|m| {
-                    let body = positive_bindings(&m.body);
-                    m.params
-                        .iter()
-                        .map(|p| var_set(&p.term).iter().all(|v| body.contains(v)))
+                // A macro binds the arguments whose parameters its body binds (macros are
+                // scoped per module: any definition of the name counts); an unknown macro
+                // (imported, or reported as undefined) is assumed to bind them all.
+                let binds = ctx.macro_index.get(&key).map(|defs| {
+                    (0..args.len())
+                        .map(|i| {
+                            defs.iter().any(|m| {
+                                let body = positive_bindings(&m.body);
+                                m.params.get(i).is_some_and(|p| {
+                                    var_set(&p.term).iter().all(|v| body.contains(v))
+                                })
+                            })
+                        })
                         .collect::<Vec<bool>>()
                 });
                 for (i, a) in args.iter().enumerate() {
