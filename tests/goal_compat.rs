@@ -215,3 +215,13 @@ fn a_test_may_call_a_module_the_agent_imports() {
     let (code, out, err) = goal(&["test", "import_late.test2g"]);
     assert_eq!(code, 0, "{out}{err}");
 }
+
+#[test]
+fn test_conditions_may_ask_about_other_agents_models() {
+    for file in ["models.test2g", "models_quiet.test2g"] {
+        let (code, diags) = check(file);
+        assert_eq!((code, diags.as_str()), (0, ""), "{file}");
+        let (code, out, err) = goal(&["test", file]);
+        assert_eq!(code, 0, "{file}: {out}{err}");
+    }
+}

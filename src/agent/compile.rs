@@ -614,11 +614,16 @@ fn rename_literal(l: &ast::Literal, ren: &Subst) -> ast::Literal {
 
 /// True when some rule condition queries other agents' mental models.
 fn uses_models(blocks: &[Block]) -> bool {
-    blocks.iter().flat_map(|b| b.rules.iter()).any(|r| {
-        r.cond
-            .iter()
-            .any(|l| matches!(l, Lit::Mental { about: Some(_), .. }))
-    })
+    blocks
+        .iter()
+        .flat_map(|b| b.rules.iter())
+        .any(|r| about_others(&r.cond))
+}
+
+/// True when a condition queries other agents' mental models.
+fn about_others(cond: &[Lit]) -> bool {
+    cond.iter()
+        .any(|l| matches!(l, Lit::Mental { about: Some(_), .. }))
 }
 
 /// True when any term of the program mentions the name `newpercept`.
@@ -734,7 +739,8 @@ pub(crate) fn extend(
             event: prog.event,
             warnings: Vec::new(),
             uses_newpercept: prog.uses_newpercept,
-            uses_models: prog.uses_models,
+            // A test condition about other agents needs their models kept too.
+            uses_models: prog.uses_models || conds.iter().any(|c| about_others(c)),
             names: prog.names.clone(),
         }),
         blocks,

@@ -79,8 +79,11 @@ fn lex_range(
     let mut prev: Option<T2> = None;
     for (l, tok, r) in toks {
         let (l, r) = (l + start, r + start);
-        let t = match tok {
-            Tok::Ident => keyword(&src[l..r]).unwrap_or(T2::G(tok)),
+        let t = match (tok, prev) {
+            (Tok::Ident, _) => keyword(&src[l..r]).unwrap_or(T2::G(tok)),
+            // The `.goal` lexer takes test keywords for names, whose `(` opens arguments; after
+            // a test keyword (`eventually (bob).bel(p)`) a bracket is a selector.
+            (Tok::KrParens, Some(p)) if !matches!(p, T2::G(_)) => T2::G(Tok::SelParens),
             _ => T2::G(tok),
         };
         let bracketed = matches!(tok, Tok::SelParens | Tok::KrParens);
