@@ -4,7 +4,7 @@
 use super::error::Fault;
 use super::goals::Goal;
 use super::mental_state::MentalState;
-use super::program::{About, Lit};
+use super::program::Lit;
 use crate::syntax::ast::MentalOp;
 use crate::term::{Subst, Term};
 use std::collections::hash_map::DefaultHasher;
@@ -98,14 +98,11 @@ fn literal(cx: &CondCtx<'_>, lit: &Lit, theta: &Subst) -> Result<Vec<Subst>, Fau
     let q = theta.apply(query);
     let ms = cx.ms;
     let mut raw = AnswerSet::default();
-    match op {
+    match (op, about) {
         // Selectors other than this/self query the mental models of other agents.
-        _ if about.is_some() => {
-            raw.items =
-                super::models::answers(ms, about.as_ref().unwrap_or(&About::All), *op, &q, theta)?
-        }
-        MentalOp::Bel => raw.items = ms.bel(&q)?,
-        MentalOp::Goal | MentalOp::AGoal | MentalOp::GoalA => {
+        (_, Some(others)) => raw.items = super::models::answers(ms, others, *op, &q, theta)?,
+        (MentalOp::Bel, None) => raw.items = ms.bel(&q)?,
+        (MentalOp::Goal | MentalOp::AGoal | MentalOp::GoalA, None) => {
             let single;
             let goals: &[Goal] = match (top_level, cx.only) {
                 (true, _) => ms.attention.top_level().goals(),
