@@ -14,6 +14,7 @@ fn parse_and_check(rel: &str) -> (String, mas2g::MasFile, Vec<Diagnostic>) {
     let (mas, mut diags) = mas2g::parse(&source, rel);
     let base = path.parent().expect("fixture has a directory");
     diags.extend(mas2g::check_files(&mas, base));
+    diags.extend(goal::mas::envcheck::check_mas(&mas).1);
     (source, mas, diags)
 }
 

@@ -1,5 +1,8 @@
 //! The typed percept base: percepts are kept according to the type the environment declares
-//! for their predicate, and `bel(percept(X))` reads this base.
+//! for their predicate, and `bel(percept(X))` reads this base. A negated percept `not(p)` of
+//! the current batch removes `p` and, for that one cycle, is itself visible as
+//! `percept(not(p))` (programs for BW4T clients up to 3.8 delete beliefs with
+//! `forall bel(percept(not(in(R)))) do delete(in(R))`).
 
 use super::kr_bridge::FactBase;
 use crate::term::{well_known as wk, Sym, Term};
@@ -62,6 +65,8 @@ pub struct PerceptBase {
     facts: FactBase,
     /// The raw batch of the current cycle as `newpercept(P)` facts (for edge-triggered rules).
     batch: FactBase,
+    /// The `percept(not(p))` facts of the current cycle's batch (removed at the next batch).
+    negations: Vec<Term>,
 }
 
 fn wrap(p: &Term) -> Term {
@@ -94,6 +99,9 @@ impl PerceptBase {
         let mut ch = PerceptChanges::default();
         if !self.batch.is_empty() {
             self.batch.clear();
+        }
+        for n in std::mem::take(&mut self.negations) {
+            self.facts.delete(&n);
         }
         static NEWPERCEPT: OnceLock<Sym> = OnceLock::new();
         let newpercept = *NEWPERCEPT.get_or_init(|| Sym::intern("newpercept"));
@@ -139,6 +147,12 @@ impl PerceptBase {
         for n in negative {
             if self.facts.delete(&wrap(n)) {
                 ch.removed.push(n.clone());
+            }
+        }
+        for p in batch.iter().filter(|p| p.is_functor(wk::NOT, 1)) {
+            let fact = wrap(p);
+            if self.facts.insert(fact.clone()) {
+                self.negations.push(fact);
             }
         }
         for p in positive {

@@ -62,6 +62,7 @@
 //!   off their room are rejected with diagnostics (Java: ignores or crashes).
 
 pub mod actions;
+pub mod client;
 pub mod color;
 pub mod geometry;
 pub mod greedy;
@@ -101,6 +102,8 @@ pub struct Bw4tConfig {
     pub position_percepts: bool,
     /// Robots block each other (`bumped`, `navigateObstacles`); off by default as in BW4T.
     pub collisions: bool,
+    /// Also send BW4T 2's `navpoint/5` (a copy of each `zone/5`), for programs of that client.
+    pub navpoints: bool,
 }
 
 /// The init parameters [`Bw4t::from_params`] understands.
@@ -116,6 +119,7 @@ pub const INIT_PARAMS: &[&str] = &[
     "oneBotPerCorridorZone",
     "positionPercepts",
     "collisions",
+    "navpoints",
 ];
 
 /// The BW4T environment.
@@ -123,6 +127,7 @@ pub const INIT_PARAMS: &[&str] = &[
 pub struct Bw4t {
     world: World,
     positions: bool,
+    navpoints: bool,
     warnings: Vec<String>,
 }
 
@@ -155,6 +160,7 @@ impl Bw4t {
         Bw4t {
             world,
             positions: config.position_percepts,
+            navpoints: config.navpoints,
             warnings,
         }
     }
@@ -238,6 +244,10 @@ impl Bw4t {
                     Some(b) => cfg.collisions = b,
                     None => return Err(bad(key, "true or false", v)),
                 },
+                "navpoints" => match flag {
+                    Some(b) => cfg.navpoints = b,
+                    None => return Err(bad(key, "true or false", v)),
+                },
                 other => {
                     return Err(vec![Diagnostic::error(
                         "M0021",
@@ -286,7 +296,11 @@ impl Environment for Bw4t {
     }
 
     fn declarations(&self) -> Vec<PerceptDecl> {
-        percepts::declarations()
+        let mut d = percepts::declarations();
+        if self.navpoints {
+            d.push(PerceptDecl::new("navpoint", 5, crate::env::PerceptType::Once));
+        }
+        d
     }
 
     fn perform(&mut self, entity: &str, action: &Term) -> ActionResult {
@@ -307,7 +321,13 @@ impl Environment for Bw4t {
 
     fn percepts(&mut self, entity: &str) -> Vec<Term> {
         match self.world.robot_index(entity) {
-            Some(r) => self.world.percept_batch(r, self.positions),
+            Some(r) => {
+                let mut batch = self.world.percept_batch(r, self.positions);
+                if self.navpoints {
+                    percepts::add_navpoints(&mut batch);
+                }
+                batch
+            }
             None => Vec::new(),
         }
     }
