@@ -18,8 +18,9 @@ pub const MAX_BLOCKS: usize = 10_000;
 pub const PARAMS: &[&str] = &["start", "blocks", "gui"];
 
 fn bad(msg: String) -> Vec<Diagnostic> {
-    vec![Diagnostic::error("M0040", msg, "init", 0..0)
-        .with_hint("write `init = [start = [2, 0, 0]]`: block i stands on the i-th number, 0 = table")]
+    vec![Diagnostic::error("M0040", msg, "init", 0..0).with_hint(
+        "write `init = [start = [2, 0, 0]]`: block i stands on the i-th number, 0 = table",
+    )]
 }
 
 /// The `(block, support)` pairs described by `params`; the table is the atom `table`.
@@ -48,7 +49,9 @@ fn number(t: &Term) -> Option<i64> {
 
 fn from_start(list: &Term) -> Result<Vec<(Term, Term)>, Vec<Diagnostic>> {
     let Some(items) = list.list_items() else {
-        return Err(bad(format!("`start` must be a list of numbers, got `{list}`")));
+        return Err(bad(format!(
+            "`start` must be a list of numbers, got `{list}`"
+        )));
     };
     if items.len() > MAX_BLOCKS {
         return Err(bad(format!(
@@ -76,7 +79,9 @@ fn from_start(list: &Term) -> Result<Vec<(Term, Term)>, Vec<Diagnostic>> {
 
 fn from_blocks(list: &Term) -> Result<Vec<(Term, Term)>, Vec<Diagnostic>> {
     let Some(items) = list.list_items() else {
-        return Err(bad(format!("`blocks` must be a list of on(X, Y), got `{list}`")));
+        return Err(bad(format!(
+            "`blocks` must be a list of on(X, Y), got `{list}`"
+        )));
     };
     if items.len() > MAX_BLOCKS {
         return Err(bad(format!(
@@ -127,7 +132,9 @@ fn check(pairs: &[(Term, Term)]) -> Result<(), Vec<Diagnostic>> {
         }
         if index.contains_key(y) {
             if let Some(other) = carried_by.insert(y, x) {
-                return Err(bad(format!("blocks {other} and {x} both stand on block {y}")));
+                return Err(bad(format!(
+                    "blocks {other} and {x} both stand on block {y}"
+                )));
             }
         }
     }
@@ -139,7 +146,9 @@ fn check(pairs: &[(Term, Term)]) -> Result<(), Vec<Diagnostic>> {
             at = &pairs[i].1;
             steps += 1;
             if steps > pairs.len() {
-                return Err(bad(format!("the tower under block {start} loops back on itself")));
+                return Err(bad(format!(
+                    "the tower under block {start} loops back on itself"
+                )));
             }
         }
     }

@@ -200,8 +200,12 @@ impl World {
             .into_iter()
             .filter(|&b| self.can_pick_up(r, b))
             .min_by(|&a, &b| {
-                let (da, db) = ((self.blocks[a].pos - pos).norm(), (self.blocks[b].pos - pos).norm());
-                da.total_cmp(&db).then(self.blocks[a].id.cmp(&self.blocks[b].id))
+                let (da, db) = (
+                    (self.blocks[a].pos - pos).norm(),
+                    (self.blocks[b].pos - pos).norm(),
+                );
+                da.total_cmp(&db)
+                    .then(self.blocks[a].id.cmp(&self.blocks[b].id))
             });
         match nearest {
             Some(b) => self.pick_up(r, self.blocks[b].id),

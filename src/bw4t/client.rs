@@ -95,7 +95,9 @@ pub fn translate(params: &InitParams, from_client: bool) -> Translated {
             }
             "agentclass" => out.warnings.push((
                 key.clone(),
-                format!("`{key}` names a Java agent class; ignored (agents are GOAL programs here)"),
+                format!(
+                    "`{key}` names a Java agent class; ignored (agents are GOAL programs here)"
+                ),
             )),
             "configfile" => out.warnings.push((
                 key.clone(),

@@ -66,6 +66,7 @@ pub mod client;
 pub mod color;
 pub mod geometry;
 pub mod greedy;
+pub mod layout;
 pub mod map;
 pub mod messages;
 pub mod motion;
@@ -298,7 +299,11 @@ impl Environment for Bw4t {
     fn declarations(&self) -> Vec<PerceptDecl> {
         let mut d = percepts::declarations();
         if self.navpoints {
-            d.push(PerceptDecl::new("navpoint", 5, crate::env::PerceptType::Once));
+            d.push(PerceptDecl::new(
+                "navpoint",
+                5,
+                crate::env::PerceptType::Once,
+            ));
         }
         d
     }

@@ -52,7 +52,10 @@ pub fn did_you_mean<'k>(name: &str, arity: usize, known: &[&'k str]) -> Option<&
 /// The failure reason for an action the environment does not know, with a suggestion.
 pub fn unknown_action(action: &crate::term::Term, known: &[&str]) -> String {
     let Some((name, arity)) = action.functor() else {
-        return format!("`{action}` is not an action; the entity understands {}", known.join(", "));
+        return format!(
+            "`{action}` is not an action; the entity understands {}",
+            known.join(", ")
+        );
     };
     match did_you_mean(name.name(), arity, known) {
         Some(k) => format!("unknown action {}/{arity} (did you mean {k}?)", name.name()),

@@ -102,9 +102,10 @@ pub fn check_program(kind: Builtin, program: &AgentProgram) -> Vec<Diagnostic> {
                 msg.push_str(&format!(" (did you mean {k}?)"));
             }
             out.push(
-                Diagnostic::warning("W0210", msg, file, spec.name.span.clone()).with_hint(
-                    format!("its actions are {}; the action will fail", actions.join(", ")),
-                ),
+                Diagnostic::warning("W0210", msg, file, spec.name.span.clone()).with_hint(format!(
+                    "its actions are {}; the action will fail",
+                    actions.join(", ")
+                )),
             );
             check_query(&spec.pre.term, kind, &percepts, file, &mut out);
         }
@@ -144,10 +145,14 @@ fn check_query(q: &Located, kind: Builtin, known: &[&str], file: &str, out: &mut
         if f.name() == "percept" && n == 1 {
             let mut content = vec![(&t.args()[0], s.args.first().unwrap_or(s))];
             while let Some((p, ps)) = content.pop() {
-                let Some((name, arity)) = p.functor() else { continue };
+                let Some((name, arity)) = p.functor() else {
+                    continue;
+                };
                 let child = |i: usize| ps.args.get(i).unwrap_or(ps);
                 match (name.name(), arity) {
-                    ("," | ";", 2) => content.extend([(&p.args()[0], child(0)), (&p.args()[1], child(1))]),
+                    ("," | ";", 2) => {
+                        content.extend([(&p.args()[0], child(0)), (&p.args()[1], child(1))])
+                    }
                     ("not", 1) => content.push((&p.args()[0], child(0))),
                     (name, arity) => unknown_percept(name, arity, ps, kind, known, file, out),
                 }

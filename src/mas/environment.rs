@@ -6,6 +6,7 @@
 //! built-in BW4T, any containing `blocksworld` the built-in blocks world; `"bw4t"` and
 //! `"blocksworld"` name them directly. [`select_environment`] is the one place that decides.
 
+use super::system::Problem;
 use crate::blocksworld::BlocksWorld;
 use crate::bw4t::Bw4t;
 use crate::diag::Diagnostic;
@@ -64,19 +65,42 @@ impl Builtin {
         }
     }
 
-    /// Creates the environment from (translated) parameters, with its set-up warnings.
+    /// Creates the environment from (translated) parameters, with its set-up warnings; the
+    /// problems of a map file come with its text, so that they show the map line.
     pub fn create(
         self,
         params: &InitParams,
-    ) -> Result<(Box<dyn Environment>, Vec<String>), Vec<Diagnostic>> {
-        match self {
-            Builtin::Bw4t => {
-                let world = Bw4t::from_params(params)?;
+    ) -> Result<(Box<dyn Environment>, Vec<String>), Vec<Problem>> {
+        let made: Result<(Box<dyn Environment>, Vec<String>), Vec<Diagnostic>> = match self {
+            Builtin::Bw4t => Bw4t::from_params(params).map(|world| {
                 let warnings = world.warnings().to_vec();
-                Ok((Box::new(world), warnings))
-            }
-            Builtin::BlocksWorld => Ok((Box::new(BlocksWorld::from_params(params)?), Vec::new())),
-        }
+                (Box::new(world) as Box<dyn Environment>, warnings)
+            }),
+            Builtin::BlocksWorld => BlocksWorld::from_params(params)
+                .map(|w| (Box::new(w) as Box<dyn Environment>, Vec::new())),
+        };
+        made.map_err(|ds| ds.into_iter().map(with_source).collect())
+    }
+}
+
+/// A diagnostic with the text of the map file it points into (built-in maps included).
+fn with_source(d: Diagnostic) -> Problem {
+    let builtin = d
+        .file
+        .strip_prefix("maps/")
+        .and_then(|f| f.strip_suffix(".toml"))
+        .and_then(crate::bw4t::map::builtin_source);
+    let text = match builtin {
+        Some(t) => Some(t.to_string()),
+        None if d.file != "init" => std::fs::read_to_string(&d.file).ok(),
+        None => None,
+    };
+    match text {
+        Some(t) => Problem {
+            diagnostic: d,
+            source: t.into(),
+        },
+        None => Problem::bare(d),
     }
 }
 
@@ -133,13 +157,10 @@ pub fn client_version(reference: &str) -> Option<String> {
         }
     }
     // `environments\BW4T2\BW4TClient.jar`: the version is in the directory name.
-    reference
-        .rsplit(['/', '\\'])
-        .skip(1)
-        .find_map(|dir| {
-            let d = dir.to_ascii_lowercase();
-            d.strip_prefix("bw4t").and_then(digits)
-        })
+    reference.rsplit(['/', '\\']).skip(1).find_map(|dir| {
+        let d = dir.to_ascii_lowercase();
+        d.strip_prefix("bw4t").and_then(digits)
+    })
 }
 
 /// The built-in environment for `reference` (as written after `env =`) and its init
@@ -205,8 +226,14 @@ mod tests {
 
     #[test]
     fn client_versions_from_names() {
-        assert_eq!(client_version("bw4t-client-3.8.0.jar").as_deref(), Some("3.8.0"));
-        assert_eq!(client_version("environments\\BW4T2\\BW4TClient.jar").as_deref(), Some("2"));
+        assert_eq!(
+            client_version("bw4t-client-3.8.0.jar").as_deref(),
+            Some("3.8.0")
+        );
+        assert_eq!(
+            client_version("environments\\BW4T2\\BW4TClient.jar").as_deref(),
+            Some("2")
+        );
         assert_eq!(client_version("BW4TClient.jar"), None);
     }
 }

@@ -3,6 +3,7 @@
 //! environment in agent-name order and messages are delivered for the next round in (sender,
 //! sequence) order. The result depends only on the programs, the map and the seed.
 
+use super::environment::EnvSetup;
 use super::launch::{Launch, Launcher};
 use super::routing::Router;
 use super::scheduler::{Job, Pool};
@@ -16,7 +17,6 @@ use crate::agent::{
 use crate::diag::Diagnostic;
 use crate::env::thread::{EnvHandle, EnvInfo, Mode};
 use crate::env::{ActionResult, InitParams};
-use super::environment::EnvSetup;
 use crate::term::{Style, Term};
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -208,7 +208,10 @@ pub fn env_params(
     }
     if kind != super::environment::Builtin::Bw4t {
         if opts.map.is_some() || opts.robots.is_some() {
-            obs.warning(&format!("--map and --robots are for bw4t, not {}; ignored", kind.name()));
+            obs.warning(&format!(
+                "--map and --robots are for bw4t, not {}; ignored",
+                kind.name()
+            ));
         }
         let seed = opts.seed.unwrap_or(0);
         return (p, seed, String::new());
@@ -246,10 +249,7 @@ impl<'a> Setup<'a> {
         let (env, info, seed, map) = match &system.env {
             Some(setup) => {
                 let (p, seed, map) = env_params(setup, opts, obs);
-                let (world, warnings) = setup
-                    .kind
-                    .create(&p)
-                    .map_err(|ds| ds.into_iter().map(Problem::bare).collect::<Vec<_>>())?;
+                let (world, warnings) = setup.kind.create(&p)?;
                 for w in &warnings {
                     obs.warning(w);
                 }

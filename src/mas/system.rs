@@ -2,9 +2,9 @@
 //! agent file (parsed and validated once, shared by every agent of that file) and the launch
 //! rules. Loads from disk, from files built into the binary, or a single `.goal` file.
 
+use super::environment::{Builtin, EnvSetup};
 use crate::agent::Program;
 use crate::diag::Diagnostic;
-use super::environment::{Builtin, EnvSetup};
 use crate::syntax::mas2g::ast::{AgentName, LaunchInstruction, LaunchRule, Spanned};
 use crate::term::Term;
 use std::collections::BTreeMap;

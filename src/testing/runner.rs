@@ -169,7 +169,7 @@ fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport
             let (p, seed, _) = env_params(setup, &run_opts, &mut Quiet);
             let world = match setup.kind.create(&p) {
                 Ok((w, _)) => w,
-                Err(ds) => return fail_all(render(&ds, "")),
+                Err(ps) => return fail_all(ps.iter().map(|p| p.render()).collect()),
             };
             let handle = EnvHandle::spawn(world, Mode::LockStep);
             match handle.info() {
