@@ -163,3 +163,36 @@ impl PerceptBase {
         ch
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn t(name: &str, arg: &str) -> Term {
+        Term::compound(name, vec![Term::atom(arg)])
+    }
+
+    fn not(p: Term) -> Term {
+        Term::compound(wk::NOT, vec![p])
+    }
+
+    #[test]
+    fn a_negated_percept_is_visible_for_its_cycle_only() {
+        let types = PerceptTypes::new([(("in".to_string(), 1), PerceptType::OnChangeNeg)]);
+        let mut base = PerceptBase::default();
+        base.apply(&[t("in", "room1")], &types, false);
+        assert!(base.contains(&t("in", "room1")));
+        let ch = base.apply(&[not(t("in", "room1"))], &types, false);
+        assert_eq!(ch.removed, vec![t("in", "room1")]);
+        assert!(!base.contains(&t("in", "room1")));
+        assert!(
+            base.contains(&not(t("in", "room1"))),
+            "percept(not(in(room1))) this cycle"
+        );
+        base.apply(&[], &types, false);
+        assert!(
+            !base.contains(&not(t("in", "room1"))),
+            "gone in the next cycle"
+        );
+    }
+}

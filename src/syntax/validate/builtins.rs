@@ -166,6 +166,7 @@ const BUILTINS: &[(&str, Option<usize>)] = &[
 /// Predicates every agent has: percepts, mail, and the agent facts (§3.1).
 const RESERVED: &[(&str, usize)] = &[
     ("percept", 1),
+    ("newpercept", 1),
     ("received", 2),
     ("sent", 2),
     ("agent", 1),
