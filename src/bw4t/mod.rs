@@ -20,7 +20,8 @@
 //! ([`obstacles`]) or fails and sets `oldTargetUnreachable(Id, 1)`.
 //!
 //! ## Not there yet
-//! * human-controlled robots and their GUI percepts; e-partners and their actions/percepts;
+//! * human-controlled robots and their GUI percepts (`humancount > 0` is warned about);
+//!   e-partners and their actions/percepts;
 //! * the size-overload/speed handicaps are plain settings ([`RobotConfig`]) rather than BW4T
 //!   bot-configuration files.
 //!
@@ -58,6 +59,8 @@
 //!   breadth-first with the zone entry rules (Java's grid has an inverted room margin).
 //! * `goTo(X, Y)` to a point outside the map area and its zones fails (Java: accepted).
 //! * `sendMessage` also accepts `allother` (GOAL's name) for `all`.
+//! * `pickUp` without an argument (clients up to 3.8) picks up the nearest block within reach.
+//! * BW4T 2's `navpoint/5` is sent as a copy of `zone/5` when asked for (init `navpoints`).
 //! * Maps with dangling neighbour names, blocks outside rooms, overlapping spawn points or doors
 //!   off their room are rejected with diagnostics (Java: ignores or crashes).
 
