@@ -1,7 +1,7 @@
 //! The typed percept base: percepts are kept according to the type the environment declares
 //! for their predicate, and `bel(percept(X))` reads this base. A negated percept `not(p)` of
-//! the current batch removes `p` and, for that one cycle, is itself visible as
-//! `percept(not(p))` (programs for BW4T clients up to 3.8 delete beliefs with
+//! the current batch removes `p` from the base; the cycle's raw batch also answers
+//! `percept(not(p))` for that one cycle (programs for BW4T clients up to 3.8 delete beliefs with
 //! `forall bel(percept(not(in(R)))) do delete(in(R))`).
 
 use super::kr_bridge::FactBase;
@@ -63,10 +63,9 @@ pub struct PerceptChanges {
 #[derive(Clone, Debug, Default)]
 pub struct PerceptBase {
     facts: FactBase,
-    /// The raw batch of the current cycle as `newpercept(P)` facts (for edge-triggered rules).
+    /// The raw batch of the current cycle: `newpercept(P)` facts (for edge-triggered rules,
+    /// when the program asks for them) and `percept(not(p))` for its negations.
     batch: FactBase,
-    /// The `percept(not(p))` facts of the current cycle's batch (removed at the next batch).
-    negations: Vec<Term>,
 }
 
 fn wrap(p: &Term) -> Term {
@@ -79,7 +78,7 @@ impl PerceptBase {
         &self.facts
     }
 
-    /// The current cycle's raw batch as `newpercept(P)` facts.
+    /// The current cycle's raw batch: `newpercept(P)` and `percept(not(p))` facts.
     pub fn batch(&self) -> &FactBase {
         &self.batch
     }
@@ -99,9 +98,6 @@ impl PerceptBase {
         let mut ch = PerceptChanges::default();
         if !self.batch.is_empty() {
             self.batch.clear();
-        }
-        for n in std::mem::take(&mut self.negations) {
-            self.facts.delete(&n);
         }
         static NEWPERCEPT: OnceLock<Sym> = OnceLock::new();
         let newpercept = *NEWPERCEPT.get_or_init(|| Sym::intern("newpercept"));
@@ -150,10 +146,7 @@ impl PerceptBase {
             }
         }
         for p in batch.iter().filter(|p| p.is_functor(wk::NOT, 1)) {
-            let fact = wrap(p);
-            if self.facts.insert(fact.clone()) {
-                self.negations.push(fact);
-            }
+            self.batch.insert(wrap(p));
         }
         for p in positive {
             if self.facts.insert(wrap(p)) {
@@ -185,14 +178,16 @@ mod tests {
         let ch = base.apply(&[not(t("in", "room1"))], &types, false);
         assert_eq!(ch.removed, vec![t("in", "room1")]);
         assert!(!base.contains(&t("in", "room1")));
+        let negated = wrap(&not(t("in", "room1")));
         assert!(
-            base.contains(&not(t("in", "room1"))),
+            !base.facts().contains(&negated),
+            "the typed base keeps no negations"
+        );
+        assert!(
+            base.batch().contains(&negated),
             "percept(not(in(room1))) this cycle"
         );
         base.apply(&[], &types, false);
-        assert!(
-            !base.contains(&not(t("in", "room1"))),
-            "gone in the next cycle"
-        );
+        assert!(!base.batch().contains(&negated), "gone in the next cycle");
     }
 }
