@@ -1,6 +1,6 @@
 //! Layout checks of a map that would otherwise only show as a game that never ends: rooms that
-//! overlap each other or the drop zone, rooms without a door, rooms no robot can reach from a
-//! spawn point, and spawn points outside the map. Each diagnostic names the zone it is about.
+//! overlap each other or the drop zone, rooms without a door, rooms the game needs that no robot
+//! can reach from a spawn point, and spawn points outside the map. Each diagnostic names the zone it is about.
 
 use super::map::{Map, ZoneKind, ZoneSpec, DROP_ZONE};
 use crate::diag::Diagnostic;
@@ -80,8 +80,10 @@ pub(crate) fn check(
     out
 }
 
-/// Rooms that no path of neighbours leads to from any spawn point's zone (breadth-first, so
-/// large maps cost time linear in their links).
+/// Rooms the game needs (the drop zone of a non-empty sequence, rooms with blocks or that may
+/// get random blocks) that no path of neighbours leads to from any spawn point's zone
+/// (breadth-first, so large maps cost time linear in their links). An empty room nobody can
+/// reach does no harm.
 fn unreachable(
     map: &Map,
     err: &dyn Fn(&str, Option<&str>, String) -> Diagnostic,
@@ -119,10 +121,18 @@ fn unreachable(
             }
         }
     }
+    let random = map.random_blocks + map.random_sequence > 0;
+    let needed = |z: &ZoneSpec| {
+        if z.name == DROP_ZONE {
+            !map.sequence.is_empty() || map.random_sequence > 0
+        } else {
+            !z.blocks.is_empty() || random
+        }
+    };
     map.zones
         .iter()
         .zip(&seen)
-        .filter(|(z, s)| z.kind == ZoneKind::Room && !**s)
+        .filter(|(z, s)| z.kind == ZoneKind::Room && !**s && needed(z))
         .map(|(z, _)| {
             err(
                 "M0016",
