@@ -132,18 +132,15 @@ fn map_layout_errors_name_the_map_line() {
         .unwrap()
         .filter_map(|e| e.ok())
         .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.ends_with(".toml"))
+        .filter(|n| n.ends_with(".toml") || n.ends_with(".xml"))
         .collect();
     names.sort();
-    assert!(names.len() >= 7, "{names:?}");
+    assert!(names.len() >= 9, "{names:?}");
     for name in names {
-        let head = std::fs::read_to_string(dir.join(&name)).unwrap();
-        let spec = head
-            .lines()
-            .next()
-            .unwrap()
-            .strip_prefix("# expect: ")
-            .unwrap();
+        let map = std::fs::read_to_string(dir.join(&name)).unwrap();
+        // `# expect: CODE LINE` (TOML) or `<!-- expect: CODE LINE -->` (XML).
+        let at = map.find("expect: ").unwrap() + "expect: ".len();
+        let spec = map[at..].lines().next().unwrap().trim_end_matches(" -->");
         let (code, line) = spec.split_once(' ').unwrap();
         let out = goal(
             &dir,
