@@ -257,3 +257,31 @@ fn failing_actions_say_why() {
         ]
     );
 }
+
+#[test]
+fn goal_check_of_a_mas_file_checks_the_map_it_names() {
+    let dir = std::env::temp_dir().join(format!("goal-envs-check-map-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let maps = fixtures().join("maps");
+    std::fs::copy(
+        maps.join("room_without_door.toml"),
+        dir.join("doorless.toml"),
+    )
+    .unwrap();
+    std::fs::copy(
+        fixtures().join("bw4t2015/robot.goal"),
+        dir.join("robot.goal"),
+    )
+    .unwrap();
+    let mas = std::fs::read_to_string(fixtures().join("bw4t2015/team.mas2g")).unwrap();
+    std::fs::write(
+        dir.join("team.mas2g"),
+        mas.replace("map = \"Random\"", "map = \"doorless.toml\""),
+    )
+    .unwrap();
+    let out = goal(&dir, &["check", "team.mas2g"]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(stdout.contains("error[M0014]"), "{stdout}");
+    assert!(stdout.contains("doorless.toml:60:1"), "{stdout}");
+}

@@ -203,6 +203,9 @@ pub fn check_path(path: &Path) -> Vec<FileReport> {
     let Some(setup) = setup else {
         return reports;
     };
+    if let Some(map) = map_report(&setup, path.parent().unwrap_or(Path::new("."))) {
+        reports.push(map);
+    }
     for r in reports.iter_mut().skip(1) {
         if !r.file.ends_with(".goal") || r.has_errors() {
             continue;
@@ -211,4 +214,28 @@ pub fn check_path(path: &Path) -> Vec<FileReport> {
         r.diagnostics.extend(check_program(setup.kind, &ast));
     }
     reports
+}
+
+/// The problems of the BW4T map file `setup` names (relative to `base`), as a report on that
+/// file; `None` for a built-in map, a map without problems, or no BW4T.
+fn map_report(setup: &EnvSetup, base: &Path) -> Option<FileReport> {
+    if setup.kind != Builtin::Bw4t {
+        return None;
+    }
+    let name = match setup.params.get("map")? {
+        Term::Atom(a) => a.name().to_string(),
+        Term::Str(s) => s.to_string(),
+        _ => return None,
+    };
+    if crate::bw4t::map::builtin(&name).is_some() {
+        return None;
+    }
+    let path = base.join(name.replace('\\', "/"));
+    let file = path.display().to_string();
+    let errors = crate::bw4t::map::load(&file).err()?;
+    Some(FileReport {
+        source: std::fs::read_to_string(&path).unwrap_or_default(),
+        file,
+        diagnostics: errors,
+    })
 }
