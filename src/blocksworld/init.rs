@@ -47,18 +47,24 @@ fn number(t: &Term) -> Option<i64> {
     }
 }
 
-fn from_start(list: &Term) -> Result<Vec<(Term, Term)>, Vec<Diagnostic>> {
+/// The items of the list parameter `key`, at most [`MAX_BLOCKS`] of them.
+fn items(list: &Term, key: &str, of_what: &str) -> Result<Vec<Term>, Vec<Diagnostic>> {
     let Some(items) = list.list_items() else {
         return Err(bad(format!(
-            "`start` must be a list of numbers, got `{list}`"
+            "`{key}` must be a list of {of_what}, got `{list}`"
         )));
     };
     if items.len() > MAX_BLOCKS {
         return Err(bad(format!(
-            "`start` lists {} blocks; at most {MAX_BLOCKS} are allowed",
+            "`{key}` lists {} blocks; at most {MAX_BLOCKS} are allowed",
             items.len()
         )));
     }
+    Ok(items)
+}
+
+fn from_start(list: &Term) -> Result<Vec<(Term, Term)>, Vec<Diagnostic>> {
+    let items = items(list, "start", "numbers")?;
     let n = items.len() as i64;
     let mut out = Vec::with_capacity(items.len());
     for (i, it) in items.iter().enumerate() {
@@ -78,17 +84,7 @@ fn from_start(list: &Term) -> Result<Vec<(Term, Term)>, Vec<Diagnostic>> {
 }
 
 fn from_blocks(list: &Term) -> Result<Vec<(Term, Term)>, Vec<Diagnostic>> {
-    let Some(items) = list.list_items() else {
-        return Err(bad(format!(
-            "`blocks` must be a list of on(X, Y), got `{list}`"
-        )));
-    };
-    if items.len() > MAX_BLOCKS {
-        return Err(bad(format!(
-            "`blocks` lists {} blocks; at most {MAX_BLOCKS} are allowed",
-            items.len()
-        )));
-    }
+    let items = items(list, "blocks", "on(X, Y)")?;
     let mut out = Vec::with_capacity(items.len());
     for it in items.iter() {
         let simple = |t: &Term| matches!(t, Term::Atom(_) | Term::Int(_));

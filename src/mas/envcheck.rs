@@ -91,16 +91,13 @@ pub fn check_program(kind: Builtin, program: &AgentProgram) -> Vec<Diagnostic> {
                 continue;
             }
             let (name, arity) = (spec.name.name.name(), spec.params.len());
-            if actions.contains(&format!("{name}/{arity}").as_str()) {
-                continue;
-            }
-            let mut msg = format!(
-                "action {name}/{arity} is not an action of the built-in {} environment",
+            let what = format!(
+                "is not an action of the built-in {} environment",
                 kind.name()
             );
-            if let Some(k) = did_you_mean(name, arity, actions) {
-                msg.push_str(&format!(" (did you mean {k}?)"));
-            }
+            let Some(msg) = unknown("action", name, arity, &what, actions) else {
+                continue;
+            };
             out.push(
                 Diagnostic::warning("W0210", msg, file, spec.name.span.clone()).with_hint(format!(
                     "its actions are {}; the action will fail",
@@ -129,6 +126,18 @@ pub fn check_program(kind: Builtin, program: &AgentProgram) -> Vec<Diagnostic> {
     }
     out.sort_by_key(|d| d.span.start);
     out
+}
+
+/// `"{kind} name/arity {what} (did you mean ...?)"` when `name/arity` is not `known`.
+fn unknown(kind: &str, name: &str, arity: usize, what: &str, known: &[&str]) -> Option<String> {
+    if known.contains(&format!("{name}/{arity}").as_str()) {
+        return None;
+    }
+    let mut msg = format!("{kind} {name}/{arity} {what}");
+    if let Some(k) = did_you_mean(name, arity, known) {
+        msg.push_str(&format!(" (did you mean {k}?)"));
+    }
+    Some(msg)
 }
 
 fn literal(l: &LiteralKind, kind: Builtin, known: &[&str], file: &str, out: &mut Vec<Diagnostic>) {
@@ -174,16 +183,10 @@ fn unknown_percept(
     file: &str,
     out: &mut Vec<Diagnostic>,
 ) {
-    if known.contains(&format!("{name}/{arity}").as_str()) {
+    let what = format!("is never sent by the built-in {} environment", kind.name());
+    let Some(msg) = unknown("percept", name, arity, &what, known) else {
         return;
-    }
-    let mut msg = format!(
-        "percept {name}/{arity} is never sent by the built-in {} environment",
-        kind.name()
-    );
-    if let Some(k) = did_you_mean(name, arity, known) {
-        msg.push_str(&format!(" (did you mean {k}?)"));
-    }
+    };
     out.push(
         Diagnostic::warning("W0211", msg, file, at.span.clone())
             .with_hint("see docs/environments.md for the percepts of the built-in environments"),
