@@ -217,6 +217,8 @@ fn failing_actions_say_why() {
     assert_eq!(goto, "unknown action goto/1 (did you mean goTo/1?)");
     let nowhere = fail(bw4t.perform("Bot1", &act("goTo", vec![Term::atom("Nowhere")])));
     assert_eq!(nowhere, "unknown place `Nowhere`");
+    let lower = fail(bw4t.perform("Bot1", &act("goTo", vec![Term::atom("roomA1")])));
+    assert_eq!(lower, "unknown place `roomA1` (did you mean `RoomA1`?)");
     let pick = fail(bw4t.perform("Bot1", &Term::atom("pickUp")));
     assert!(pick.contains("no block within reach"), "{pick}");
     let fly = fail(bw4t.perform("Bot1", &act("fly", vec![Term::Int(1)])));

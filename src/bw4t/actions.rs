@@ -108,7 +108,11 @@ impl World {
 
     fn go_to_place(&mut self, r: usize, place: &str) -> ActionResult {
         let Some(z) = self.zone_index(place) else {
-            return ActionResult::fail(format!("unknown place `{place}`"));
+            let names = self.zones.iter().map(|z| z.sym.name());
+            return ActionResult::fail(match crate::env::closest(place, names) {
+                Some(near) => format!("unknown place `{place}` (did you mean `{near}`?)"),
+                None => format!("unknown place `{place}`"),
+            });
         };
         let plan = self.plan_to_zone(r, z, self.zones[z].centre());
         self.start_plan(r, plan)

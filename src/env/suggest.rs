@@ -49,6 +49,20 @@ pub fn did_you_mean<'k>(name: &str, arity: usize, known: &[&'k str]) -> Option<&
         .map(|(_, k)| k)
 }
 
+/// The name among `known` closest to `name` (a place, a robot), within a small edit distance.
+pub fn closest<'k>(name: &str, known: impl IntoIterator<Item = &'k str>) -> Option<&'k str> {
+    if name.len() > 64 {
+        return None;
+    }
+    let limit = 2 * (1 + name.len() / 4);
+    known
+        .into_iter()
+        .map(|k| (distance(name, k), k))
+        .filter(|(d, _)| *d <= limit)
+        .min_by(|x, y| x.0.cmp(&y.0).then(x.1.cmp(y.1)))
+        .map(|(_, k)| k)
+}
+
 /// The failure reason for an action the environment does not know, with a suggestion.
 pub fn unknown_action(action: &crate::term::Term, known: &[&str]) -> String {
     let Some((name, arity)) = action.functor() else {
@@ -80,5 +94,7 @@ mod tests {
         assert_eq!(did_you_mean("putDown", 1, BW), Some("putDown/0"));
         assert_eq!(did_you_mean("gotoblock", 1, BW), Some("goToBlock/1"));
         assert_eq!(did_you_mean("fly", 3, BW), None);
+        assert_eq!(closest("roomA1", ["RoomA1", "RoomB1"]), Some("RoomA1"));
+        assert_eq!(closest("Kitchen", ["RoomA1"]), None);
     }
 }
