@@ -201,7 +201,6 @@ impl World {
         };
         let nearest = self
             .free_blocks_in(z)
-            .into_iter()
             .filter(|&b| self.can_pick_up(r, b))
             .min_by(|&a, &b| {
                 let (da, db) = (

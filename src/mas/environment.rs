@@ -21,6 +21,9 @@ pub enum Builtin {
     BlocksWorld,
 }
 
+/// A created environment with its set-up warnings.
+pub type Created = (Box<dyn Environment>, Vec<String>);
+
 /// Every built-in environment, in the order they are listed to users.
 pub const BUILTINS: &[Builtin] = &[Builtin::Bw4t, Builtin::BlocksWorld];
 
@@ -67,11 +70,8 @@ impl Builtin {
 
     /// Creates the environment from (translated) parameters, with its set-up warnings; the
     /// problems of a map file come with its text, so that they show the map line.
-    pub fn create(
-        self,
-        params: &InitParams,
-    ) -> Result<(Box<dyn Environment>, Vec<String>), Vec<Problem>> {
-        let made: Result<(Box<dyn Environment>, Vec<String>), Vec<Diagnostic>> = match self {
+    pub fn create(self, params: &InitParams) -> Result<Created, Vec<Problem>> {
+        let made: Result<Created, Vec<Diagnostic>> = match self {
             Builtin::Bw4t => Bw4t::from_params(params).map(|world| {
                 let warnings = world.warnings().to_vec();
                 (Box::new(world) as Box<dyn Environment>, warnings)
@@ -186,7 +186,7 @@ pub fn select_environment(reference: &str, params: &InitParams) -> Result<EnvSet
             let version = client_version(reference).filter(|_| is_jar);
             let mut params = t.params;
             // Programs for the BW4T 2 client (or a client of unknown version) read `navpoint/5`.
-            if is_jar && !version.as_deref().is_some_and(|v| !v.starts_with('2')) {
+            if is_jar && version.as_deref().is_none_or(|v| v.starts_with('2')) {
                 params
                     .entry("navpoints".into())
                     .or_insert(crate::term::Term::atom("true"));
