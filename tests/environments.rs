@@ -122,6 +122,9 @@ fn human_bots_are_warned_about_once() {
     let err = text(&out.stderr);
     assert_eq!(err.matches("not available yet").count(), 1, "{err}");
     assert!(err.contains("BW4T client version 3.8.0"), "{err}");
+    // `agentcount = "1"`: one robot entity, so one agent, although the map has three spawns.
+    let agents = err.lines().skip_while(|l| !l.starts_with("agent ")).skip(1);
+    assert_eq!(agents.count(), 1, "{err}");
 }
 
 #[test]
