@@ -112,6 +112,8 @@ fn goal_check_compares_env_actions_and_percepts_with_the_environment() {
         stdout.contains("(did you mean holdingblocks/1?)"),
         "{stdout}"
     );
+    // Percept queries in action preconditions count too.
+    assert!(stdout.contains("percept holdng/1 is never sent by the built-in bw4t environment (did you mean holding/1?)"), "{stdout}");
     insta::assert_snapshot!("check_slips", stdout);
 }
 

@@ -87,6 +87,7 @@ pub fn check_program(kind: Builtin, program: &AgentProgram) -> Vec<Diagnostic> {
     let percepts: Vec<&str> = percepts.iter().map(String::as_str).collect();
     for module in &program.modules {
         for spec in &module.action_specs {
+            check_query(&spec.pre.term, kind, &percepts, file, &mut out);
             if spec.kind != ActionSpecKind::Env {
                 continue;
             }
@@ -104,7 +105,6 @@ pub fn check_program(kind: Builtin, program: &AgentProgram) -> Vec<Diagnostic> {
                     actions.join(", ")
                 )),
             );
-            check_query(&spec.pre.term, kind, &percepts, file, &mut out);
         }
         let mut rules: Vec<&Rule> = Vec::new();
         if let Some(p) = &module.program {
