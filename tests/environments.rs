@@ -75,6 +75,7 @@ fn a_bad_blocks_world_start_list_is_refused() {
     let err = text(&out.stderr);
     assert!(!out.status.success(), "{err}");
     assert!(err.contains("loops back on itself"), "{err}");
+    assert!(err.contains("bw.mas2g:4:10"), "points at the start list: {err}");
 }
 
 #[test]

@@ -55,19 +55,33 @@ pub fn check_mas(mas: &MasFile) -> (Option<EnvSetup>, Vec<Diagnostic>) {
             (None, vec![d])
         }
         Ok(setup) => {
-            let diags = setup
+            let span_of = |key: &str| {
+                mas.environment
+                    .iter()
+                    .flat_map(|e| &e.init)
+                    .find(|p| p.key.value == key)
+                    .map_or(env.span.clone(), |p| p.span.clone())
+            };
+            let mut diags: Vec<Diagnostic> = setup
                 .warnings
                 .iter()
-                .map(|(key, text)| {
-                    let span = mas
-                        .environment
-                        .iter()
-                        .flat_map(|e| &e.init)
-                        .find(|p| &p.key.value == key)
-                        .map_or(env.span.clone(), |p| p.span.clone());
-                    Diagnostic::warning("W0207", text.clone(), file, span)
-                })
+                .map(|(key, text)| Diagnostic::warning("W0207", text.clone(), file, span_of(key)))
                 .collect();
+            // The blocks world's towers are all in the `.mas2g` file: check them here.
+            if setup.kind == Builtin::BlocksWorld {
+                if let Err(errors) = crate::blocksworld::init::towers(&setup.params) {
+                    let key = if setup.params.contains_key("start") {
+                        "start"
+                    } else {
+                        "blocks"
+                    };
+                    diags.extend(errors.into_iter().map(|mut d| {
+                        d.file = file.to_string();
+                        d.span = span_of(key);
+                        d
+                    }));
+                }
+            }
             (Some(setup), diags)
         }
     }
