@@ -75,7 +75,10 @@ fn a_bad_blocks_world_start_list_is_refused() {
     let err = text(&out.stderr);
     assert!(!out.status.success(), "{err}");
     assert!(err.contains("loops back on itself"), "{err}");
-    assert!(err.contains("bw.mas2g:4:10"), "points at the start list: {err}");
+    assert!(
+        err.contains("bw.mas2g:4:10"),
+        "points at the start list: {err}"
+    );
 }
 
 #[test]
@@ -292,4 +295,31 @@ fn goal_check_of_a_mas_file_checks_the_map_it_names() {
     assert_eq!(out.status.code(), Some(1), "{stdout}");
     assert!(stdout.contains("error[M0014]"), "{stdout}");
     assert!(stdout.contains("doorless.toml:60:1"), "{stdout}");
+}
+
+#[test]
+fn a_bad_bw4t_init_value_points_at_its_place_in_the_mas_file() {
+    let dir = std::env::temp_dir().join(format!("goal-envs-bad-init-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(
+        fixtures().join("bw4t2015/robot.goal"),
+        dir.join("robot.goal"),
+    )
+    .unwrap();
+    let mas = std::fs::read_to_string(fixtures().join("bw4t2015/team.mas2g")).unwrap();
+    std::fs::write(
+        dir.join("team.mas2g"),
+        mas.replace("agentcount = \"3\"", "agentcount = \"lots\""),
+    )
+    .unwrap();
+    for cmd in ["run", "check"] {
+        let out = goal(&dir, &[cmd, "team.mas2g"]);
+        let all = text(&out.stdout) + &text(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{cmd}: {all}");
+        assert!(
+            all.contains("init parameter `agentcount` must be an integer 0..1000, got `\"lots\"`"),
+            "{cmd}: {all}"
+        );
+        assert!(all.contains("team.mas2g:5:31"), "{cmd}: {all}");
+    }
 }

@@ -59,7 +59,7 @@ pub fn check_mas(mas: &MasFile) -> (Option<EnvSetup>, Vec<Diagnostic>) {
                 mas.environment
                     .iter()
                     .flat_map(|e| &e.init)
-                    .find(|p| p.key.value == key)
+                    .find(|p| p.key.value.eq_ignore_ascii_case(key))
                     .map_or(env.span.clone(), |p| p.span.clone())
             };
             let mut diags: Vec<Diagnostic> = setup
@@ -67,6 +67,28 @@ pub fn check_mas(mas: &MasFile) -> (Option<EnvSetup>, Vec<Diagnostic>) {
                 .iter()
                 .map(|(key, text)| Diagnostic::warning("W0207", text.clone(), file, span_of(key)))
                 .collect();
+            // BW4T settings (except the map, checked when it is loaded) are checked here so that
+            // a bad value points at its place in the file.
+            if setup.kind == Builtin::Bw4t {
+                let mut settings = setup.params.clone();
+                settings
+                    .retain(|k, _| k != "map" && crate::bw4t::INIT_PARAMS.contains(&k.as_str()));
+                if let Err(errors) = crate::bw4t::Bw4t::from_params(&settings) {
+                    diags.extend(errors.into_iter().map(|mut d| {
+                        let key = d.message.split('`').nth(1).unwrap_or("");
+                        let key = if key == "robots" && setup.params.contains_key("robots") {
+                            let written = mas_key(mas, &["agentcount", "robots"]);
+                            d.message = d.message.replacen("`robots`", &format!("`{written}`"), 1);
+                            written
+                        } else {
+                            key.to_string()
+                        };
+                        d.file = file.to_string();
+                        d.span = span_of(&key);
+                        d
+                    }));
+                }
+            }
             // The blocks world's towers are all in the `.mas2g` file: check them here.
             if setup.kind == Builtin::BlocksWorld {
                 if let Err(errors) = crate::blocksworld::init::towers(&setup.params) {
@@ -85,6 +107,16 @@ pub fn check_mas(mas: &MasFile) -> (Option<EnvSetup>, Vec<Diagnostic>) {
             (Some(setup), diags)
         }
     }
+}
+
+/// The first of `keys` written in `mas`'s init list, in any case (the first of `keys` if none).
+fn mas_key(mas: &MasFile, keys: &[&str]) -> String {
+    mas.environment
+        .iter()
+        .flat_map(|e| &e.init)
+        .map(|p| p.key.value.clone())
+        .find(|k| keys.iter().any(|w| k.eq_ignore_ascii_case(w)))
+        .unwrap_or_else(|| keys[0].to_string())
 }
 
 /// Warnings for `@env` action specifications and `percept(...)` queries of `program` that the
