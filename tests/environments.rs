@@ -22,6 +22,19 @@ fn text(b: &[u8]) -> String {
     String::from_utf8_lossy(b).into_owned()
 }
 
+/// A fresh copy of the fixture system `system/mas` (with its agent file `agent`) in a temp
+/// directory, with `from` replaced by `to` in the `.mas2g` text.
+fn variant(tag: &str, system: &str, mas: &str, agent: &str, from: &str, to: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("goal-envs-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let src = fixtures().join(system);
+    std::fs::copy(src.join(agent), dir.join(agent)).unwrap();
+    let text = std::fs::read_to_string(src.join(mas)).unwrap();
+    assert!(text.contains(from), "{from}");
+    std::fs::write(dir.join(mas), text.replace(from, to)).unwrap();
+    dir
+}
+
 #[test]
 fn a_2015_course_team_on_the_bw4t_client_jar_completes_the_game() {
     let out = goal(&fixtures().join("bw4t2015"), &["run", "team.mas2g"]);
@@ -60,17 +73,14 @@ fn blocks_world_runs_under_goal_run_and_its_agent_stops_when_done() {
 
 #[test]
 fn a_bad_blocks_world_start_list_is_refused() {
-    let dir = std::env::temp_dir().join(format!("goal-envs-bw-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::copy(
-        fixtures().join("blocksworld/stackBuilder.goal"),
-        dir.join("stackBuilder.goal"),
-    )
-    .unwrap();
-    let mas = std::fs::read_to_string(fixtures().join("blocksworld/bw.mas2g"))
-        .unwrap()
-        .replace("start = [2, 0, 0, 3, 4, 0]", "start = [2, 1, 0, 3, 4, 0]");
-    std::fs::write(dir.join("bw.mas2g"), mas).unwrap();
+    let dir = variant(
+        "bw",
+        "blocksworld",
+        "bw.mas2g",
+        "stackBuilder.goal",
+        "start = [2, 0, 0, 3, 4, 0]",
+        "start = [2, 1, 0, 3, 4, 0]",
+    );
     let out = goal(&dir, &["run", "bw.mas2g"]);
     let err = text(&out.stderr);
     assert!(!out.status.success(), "{err}");
@@ -271,23 +281,18 @@ fn failing_actions_say_why() {
 
 #[test]
 fn goal_check_of_a_mas_file_checks_the_map_it_names() {
-    let dir = std::env::temp_dir().join(format!("goal-envs-check-map-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = variant(
+        "check-map",
+        "bw4t2015",
+        "team.mas2g",
+        "robot.goal",
+        "map = \"Random\"",
+        "map = \"doorless.toml\"",
+    );
     let maps = fixtures().join("maps");
     std::fs::copy(
         maps.join("room_without_door.toml"),
         dir.join("doorless.toml"),
-    )
-    .unwrap();
-    std::fs::copy(
-        fixtures().join("bw4t2015/robot.goal"),
-        dir.join("robot.goal"),
-    )
-    .unwrap();
-    let mas = std::fs::read_to_string(fixtures().join("bw4t2015/team.mas2g")).unwrap();
-    std::fs::write(
-        dir.join("team.mas2g"),
-        mas.replace("map = \"Random\"", "map = \"doorless.toml\""),
     )
     .unwrap();
     let out = goal(&dir, &["check", "team.mas2g"]);
@@ -299,19 +304,14 @@ fn goal_check_of_a_mas_file_checks_the_map_it_names() {
 
 #[test]
 fn a_bad_bw4t_init_value_points_at_its_place_in_the_mas_file() {
-    let dir = std::env::temp_dir().join(format!("goal-envs-bad-init-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::copy(
-        fixtures().join("bw4t2015/robot.goal"),
-        dir.join("robot.goal"),
-    )
-    .unwrap();
-    let mas = std::fs::read_to_string(fixtures().join("bw4t2015/team.mas2g")).unwrap();
-    std::fs::write(
-        dir.join("team.mas2g"),
-        mas.replace("agentcount = \"3\"", "agentcount = \"lots\""),
-    )
-    .unwrap();
+    let dir = variant(
+        "bad-init",
+        "bw4t2015",
+        "team.mas2g",
+        "robot.goal",
+        "agentcount = \"3\"",
+        "agentcount = \"lots\"",
+    );
     for cmd in ["run", "check"] {
         let out = goal(&dir, &[cmd, "team.mas2g"]);
         let all = text(&out.stdout) + &text(&out.stderr);
