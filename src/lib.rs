@@ -1,10 +1,11 @@
 //! A runtime for GOAL agent programs: parser and validator (`syntax`), the shared term type
 //! (`term`), the knowledge-representation layer (`kr`), the agent interpreter (`agent`),
 //! multi-agent systems (`mas`), the environment interface (`env`) and the built-in Blocks World
-//! for Teams environment (`bw4t`). See ARCHITECTURE.md for a map.
+//! for Teams (`bw4t`) and blocks world (`blocksworld`) environments. See ARCHITECTURE.md for a map.
 
 pub mod agent;
 pub mod bench;
+pub mod blocksworld;
 pub mod bw4t;
 pub mod diag;
 pub mod env;

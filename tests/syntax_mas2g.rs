@@ -14,6 +14,7 @@ fn parse_and_check(rel: &str) -> (String, mas2g::MasFile, Vec<Diagnostic>) {
     let (mas, mut diags) = mas2g::parse(&source, rel);
     let base = path.parent().expect("fixture has a directory");
     diags.extend(mas2g::check_files(&mas, base));
+    diags.extend(goal::mas::envcheck::check_mas(&mas).1);
     (source, mas, diags)
 }
 
@@ -225,4 +226,26 @@ fn shipped_mas_and_test_files_have_no_errors() {
             assert!(!r.has_errors(), "{}:\n{}", r.file, rendered.join(""));
         }
     }
+}
+
+#[test]
+fn old_environment_and_launch_forms_parse() {
+    let src = "environment{ \"environments\\BW4T2\\BW4TClient.jar\". init [agentcount = \"1\"] . }\n\
+               agentfiles{ \"agents\\ag.goal\". \"stackBuilder.goal\". }\n\
+               launchpolicy{ launch ag[100]:ag. when entity@env do launch stackbuilder:stackBuilder. }";
+    let (mas, diags) = mas2g::parse(src, "old.mas2g");
+    assert!(diags.is_empty(), "{diags:?}");
+    let env = mas.environment.as_ref().unwrap();
+    // Backslashes are path separators, not escapes.
+    assert_eq!(
+        env.env.as_ref().unwrap().value,
+        "environments\\BW4T2\\BW4TClient.jar"
+    );
+    assert_eq!(env.init.len(), 1);
+    assert_eq!(mas.agent_files[0].path.value, "agents/ag.goal");
+    let inst = &mas.launch_rules[0].instructions[0];
+    assert_eq!(inst.reference.value, "ag");
+    assert_eq!(inst.count(), 100);
+    assert!(mas.may_launch("ag100") && !mas.may_launch("ag101"));
+    assert!(mas.launch_rules[1].condition.is_some());
 }

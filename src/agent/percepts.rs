@@ -1,5 +1,8 @@
 //! The typed percept base: percepts are kept according to the type the environment declares
-//! for their predicate, and `bel(percept(X))` reads this base.
+//! for their predicate, and `bel(percept(X))` reads this base. A negated percept `not(p)` of
+//! the current batch removes `p` from the base; the cycle's raw batch also answers
+//! `percept(not(p))` for that one cycle (programs for BW4T clients up to 3.8 delete beliefs with
+//! `forall bel(percept(not(in(R)))) do delete(in(R))`).
 
 use super::kr_bridge::FactBase;
 use crate::term::{well_known as wk, Sym, Term};
@@ -60,7 +63,8 @@ pub struct PerceptChanges {
 #[derive(Clone, Debug, Default)]
 pub struct PerceptBase {
     facts: FactBase,
-    /// The raw batch of the current cycle as `newpercept(P)` facts (for edge-triggered rules).
+    /// The raw batch of the current cycle: `newpercept(P)` facts (for edge-triggered rules,
+    /// when the program asks for them) and `percept(not(p))` for its negations.
     batch: FactBase,
 }
 
@@ -74,7 +78,7 @@ impl PerceptBase {
         &self.facts
     }
 
-    /// The current cycle's raw batch as `newpercept(P)` facts.
+    /// The current cycle's raw batch: `newpercept(P)` and `percept(not(p))` facts.
     pub fn batch(&self) -> &FactBase {
         &self.batch
     }
@@ -141,11 +145,49 @@ impl PerceptBase {
                 ch.removed.push(n.clone());
             }
         }
+        for p in batch.iter().filter(|p| p.is_functor(wk::NOT, 1)) {
+            self.batch.insert(wrap(p));
+        }
         for p in positive {
             if self.facts.insert(wrap(p)) {
                 ch.added.push(p.clone());
             }
         }
         ch
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn t(name: &str, arg: &str) -> Term {
+        Term::compound(name, vec![Term::atom(arg)])
+    }
+
+    fn not(p: Term) -> Term {
+        Term::compound(wk::NOT, vec![p])
+    }
+
+    #[test]
+    fn a_negated_percept_is_visible_for_its_cycle_only() {
+        let types = PerceptTypes::new([(("in".to_string(), 1), PerceptType::OnChangeNeg)]);
+        let mut base = PerceptBase::default();
+        base.apply(&[t("in", "room1")], &types, false);
+        assert!(base.contains(&t("in", "room1")));
+        let ch = base.apply(&[not(t("in", "room1"))], &types, false);
+        assert_eq!(ch.removed, vec![t("in", "room1")]);
+        assert!(!base.contains(&t("in", "room1")));
+        let negated = wrap(&not(t("in", "room1")));
+        assert!(
+            !base.facts().contains(&negated),
+            "the typed base keeps no negations"
+        );
+        assert!(
+            base.batch().contains(&negated),
+            "percept(not(in(room1))) this cycle"
+        );
+        base.apply(&[], &types, false);
+        assert!(!base.batch().contains(&negated), "gone in the next cycle");
     }
 }

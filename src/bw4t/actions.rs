@@ -12,6 +12,7 @@ pub const ACTIONS: &[&str] = &[
     "goTo/2",
     "goToBlock/1",
     "pickUp/1",
+    "pickUp/0",
     "putDown/0",
     "sendMessage/2",
     "navigateObstacles/0",
@@ -74,6 +75,7 @@ impl World {
                     ActionResult::fail(format!("pickUp/1 expects a block id, got `{}`", args[0]))
                 }
             },
+            ("pickUp", 0) => self.pick_up_here(r),
             ("putDown", 0) => self.put_down(r),
             ("sendMessage", 2) => match name_arg(&args[0]) {
                 Some(to) => self.send_message(r, to, &args[1]),
@@ -83,10 +85,7 @@ impl World {
                 )),
             },
             ("navigateObstacles", 0) => self.navigate_obstacles(r),
-            (n, a) => ActionResult::fail(format!(
-                "unknown action {n}/{a}; robots understand {}",
-                ACTIONS.join(", ")
-            )),
+            _ => ActionResult::fail(crate::env::unknown_action(action, ACTIONS)),
         }
     }
 
@@ -109,7 +108,11 @@ impl World {
 
     fn go_to_place(&mut self, r: usize, place: &str) -> ActionResult {
         let Some(z) = self.zone_index(place) else {
-            return ActionResult::fail(format!("unknown place `{place}`"));
+            let names = self.zones.iter().map(|z| z.sym.name());
+            return ActionResult::fail(match crate::env::closest(place, names) {
+                Some(near) => format!("unknown place `{place}` (did you mean `{near}`?)"),
+                None => format!("unknown place `{place}`"),
+            });
         };
         let plan = self.plan_to_zone(r, z, self.zones[z].centre());
         self.start_plan(r, plan)
@@ -188,6 +191,31 @@ impl World {
         self.robots[r].holding.push(b);
         self.robots[r].stats.blocks_picked += 1;
         ActionResult::Ok
+    }
+
+    /// `pickUp` without an argument (BW4T clients up to 3.8): the nearest block the robot is at.
+    fn pick_up_here(&mut self, r: usize) -> ActionResult {
+        let pos = self.robots[r].pos;
+        let Some(z) = self.zone_at(&pos) else {
+            return ActionResult::fail("pickUp: there is no block here (the robot is in no zone)");
+        };
+        let nearest = self
+            .free_blocks_in(z)
+            .filter(|&b| self.can_pick_up(r, b))
+            .min_by(|&a, &b| {
+                let (da, db) = (
+                    (self.blocks[a].pos - pos).norm(),
+                    (self.blocks[b].pos - pos).norm(),
+                );
+                da.total_cmp(&db)
+                    .then(self.blocks[a].id.cmp(&self.blocks[b].id))
+            });
+        match nearest {
+            Some(b) => self.pick_up(r, self.blocks[b].id),
+            None => ActionResult::fail(
+                "pickUp: no block within reach (go to a block with goToBlock first)",
+            ),
+        }
     }
 
     fn put_down(&mut self, r: usize) -> ActionResult {

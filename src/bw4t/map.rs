@@ -19,6 +19,9 @@ pub const DROP_ZONE: &str = "DropZone";
 /// Rooms never receive more random blocks than this (BW4T's limit).
 pub const MAX_RANDOM_BLOCKS_PER_ROOM: usize = 10;
 
+/// Longest colour sequence a map may ask for (agents hold the sequence as one list term).
+pub const MAX_SEQUENCE: usize = 1000;
+
 const BUILTIN: &[(&str, &str)] = &[
     ("banana", include_str!("../../maps/banana.toml")),
     ("rainbow", include_str!("../../maps/rainbow.toml")),
@@ -130,6 +133,11 @@ pub fn builtin_names() -> Vec<&'static str> {
     BUILTIN.iter().map(|(n, _)| *n).collect()
 }
 
+/// The TOML text of the built-in map `name`.
+pub fn builtin_source(name: &str) -> Option<&'static str> {
+    BUILTIN.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
+}
+
 /// The built-in map `name` (`None` if there is no such map).
 pub fn builtin(name: &str) -> Option<Result<Map, Vec<Diagnostic>>> {
     let (n, src) = BUILTIN.iter().find(|(n, _)| *n == name)?;
@@ -188,8 +196,19 @@ pub(crate) enum SpanStyle {
     Xml,
 }
 
-/// The span of the zone named `name` in `source` (empty span at 0 when not found).
+/// The span of the zone named `name` in `source` (empty span at 0 when not found); `@key`
+/// names a top-level entry instead (`@sequence`, `@spawns`).
 pub(crate) fn zone_span(source: &str, name: &str, style: SpanStyle) -> Span {
+    if let Some(key) = name.strip_prefix('@') {
+        let needle = match (style, key) {
+            (SpanStyle::Toml, k) => format!("{k} ="),
+            (SpanStyle::Xml, "spawns") => "<entities>".to_string(),
+            (SpanStyle::Xml, k) => format!("<{k}>"),
+        };
+        return source
+            .find(needle.as_str())
+            .map_or(0..0, |i| i..i + needle.len());
+    }
     let needles = match style {
         SpanStyle::Toml => vec![
             format!("name = \"{name}\""),
@@ -307,11 +326,25 @@ pub(crate) fn check(map: &Map, file: &str, source: &str, style: SpanStyle) -> Ve
             }
         }
     }
+    if map.sequence.len() + map.random_sequence as usize > MAX_SEQUENCE {
+        errs.push(
+            err(
+                "M0017",
+                Some("@sequence"),
+                format!(
+                    "the sequence has {} colours; at most {MAX_SEQUENCE} are allowed",
+                    map.sequence.len() + map.random_sequence as usize
+                ),
+            )
+            .with_hint("a game delivers one block per colour; shorten the sequence"),
+        );
+        return errs;
+    }
     for c in &map.sequence {
         if Color::parse(c).is_none() {
             errs.push(err(
                 "M0006",
-                None,
+                Some("@sequence"),
                 format!("the sequence has an unknown colour `{c}`"),
             ));
         }
@@ -335,7 +368,7 @@ pub(crate) fn check(map: &Map, file: &str, source: &str, style: SpanStyle) -> Ve
         if s.iter().any(|v| !v.is_finite()) {
             errs.push(err(
                 "M0010",
-                None,
+                Some("@spawns"),
                 format!("spawn point {} has bad numbers", i + 1),
             ));
             continue;
@@ -344,7 +377,7 @@ pub(crate) fn check(map: &Map, file: &str, source: &str, style: SpanStyle) -> Ve
             if (s[0] - o[0]).abs() < 2.0 && (s[1] - o[1]).abs() < 2.0 {
                 errs.push(err(
                     "M0007",
-                    None,
+                    Some("@spawns"),
                     format!(
                         "spawn points {} ({}, {}) and {} ({}, {}) overlap (robots are 2 x 2)",
                         j + 1,
@@ -375,6 +408,7 @@ pub(crate) fn check(map: &Map, file: &str, source: &str, style: SpanStyle) -> Ve
             ));
         }
     }
+    errs.extend(super::layout::check(map, &err));
     let rooms = map
         .zones
         .iter()

@@ -20,7 +20,8 @@
 //! ([`obstacles`]) or fails and sets `oldTargetUnreachable(Id, 1)`.
 //!
 //! ## Not there yet
-//! * human-controlled robots and their GUI percepts; e-partners and their actions/percepts;
+//! * human-controlled robots and their GUI percepts (`humancount > 0` is warned about);
+//!   e-partners and their actions/percepts;
 //! * the size-overload/speed handicaps are plain settings ([`RobotConfig`]) rather than BW4T
 //!   bot-configuration files.
 //!
@@ -58,13 +59,17 @@
 //!   breadth-first with the zone entry rules (Java's grid has an inverted room margin).
 //! * `goTo(X, Y)` to a point outside the map area and its zones fails (Java: accepted).
 //! * `sendMessage` also accepts `allother` (GOAL's name) for `all`.
+//! * `pickUp` without an argument (clients up to 3.8) picks up the nearest block within reach.
+//! * BW4T 2's `navpoint/5` is sent as a copy of `zone/5` when asked for (init `navpoints`).
 //! * Maps with dangling neighbour names, blocks outside rooms, overlapping spawn points or doors
 //!   off their room are rejected with diagnostics (Java: ignores or crashes).
 
 pub mod actions;
+pub mod client;
 pub mod color;
 pub mod geometry;
 pub mod greedy;
+pub mod layout;
 pub mod map;
 pub mod messages;
 pub mod motion;
@@ -101,6 +106,8 @@ pub struct Bw4tConfig {
     pub position_percepts: bool,
     /// Robots block each other (`bumped`, `navigateObstacles`); off by default as in BW4T.
     pub collisions: bool,
+    /// Also send BW4T 2's `navpoint/5` (a copy of each `zone/5`), for programs of that client.
+    pub navpoints: bool,
 }
 
 /// The init parameters [`Bw4t::from_params`] understands.
@@ -116,6 +123,7 @@ pub const INIT_PARAMS: &[&str] = &[
     "oneBotPerCorridorZone",
     "positionPercepts",
     "collisions",
+    "navpoints",
 ];
 
 /// The BW4T environment.
@@ -123,6 +131,7 @@ pub const INIT_PARAMS: &[&str] = &[
 pub struct Bw4t {
     world: World,
     positions: bool,
+    navpoints: bool,
     warnings: Vec<String>,
 }
 
@@ -155,6 +164,7 @@ impl Bw4t {
         Bw4t {
             world,
             positions: config.position_percepts,
+            navpoints: config.navpoints,
             warnings,
         }
     }
@@ -238,6 +248,10 @@ impl Bw4t {
                     Some(b) => cfg.collisions = b,
                     None => return Err(bad(key, "true or false", v)),
                 },
+                "navpoints" => match flag {
+                    Some(b) => cfg.navpoints = b,
+                    None => return Err(bad(key, "true or false", v)),
+                },
                 other => {
                     return Err(vec![Diagnostic::error(
                         "M0021",
@@ -286,7 +300,15 @@ impl Environment for Bw4t {
     }
 
     fn declarations(&self) -> Vec<PerceptDecl> {
-        percepts::declarations()
+        let mut d = percepts::declarations();
+        if self.navpoints {
+            d.push(PerceptDecl::new(
+                "navpoint",
+                5,
+                crate::env::PerceptType::Once,
+            ));
+        }
+        d
     }
 
     fn perform(&mut self, entity: &str, action: &Term) -> ActionResult {
@@ -307,7 +329,13 @@ impl Environment for Bw4t {
 
     fn percepts(&mut self, entity: &str) -> Vec<Term> {
         match self.world.robot_index(entity) {
-            Some(r) => self.world.percept_batch(r, self.positions),
+            Some(r) => {
+                let mut batch = self.world.percept_batch(r, self.positions);
+                if self.navpoints {
+                    percepts::add_navpoints(&mut batch);
+                }
+                batch
+            }
             None => Vec::new(),
         }
     }

@@ -352,3 +352,16 @@ impl World {
         self.robots[r].filter.batch_grouped(groups)
     }
 }
+
+/// Adds BW4T 2's `navpoint(Id, Name, X, Y, Neighbours)` for every `zone/5` of a batch (the
+/// BW4T 3 client renamed the percept; its arguments stayed the same).
+pub(crate) fn add_navpoints(batch: &mut Vec<Term>) {
+    let zone = syms().zone;
+    let navpoint = Sym::intern("navpoint");
+    let copies: Vec<Term> = batch
+        .iter()
+        .filter(|t| t.is_functor(zone, 5))
+        .map(|t| Term::compound(navpoint, t.args().to_vec()))
+        .collect();
+    batch.extend(copies);
+}

@@ -68,12 +68,13 @@ struct XDoor {
 /// Imports a BW4T XML map (`file` names it in diagnostics and gives the map its name).
 pub fn import(source: &str, file: &str) -> Result<Map, Vec<Diagnostic>> {
     let raw: NewMap = quick_xml::de::from_str(source).map_err(|e| {
-        vec![Diagnostic::error(
-            "M0001",
-            format!("invalid BW4T XML map: {e}"),
-            file,
-            0..0,
-        )]
+        let at = syntax_error_offset(source).unwrap_or(0);
+        vec![
+            Diagnostic::error("M0001", format!("invalid BW4T XML map: {e}"), file, at..at)
+                .with_hint(
+                "a BW4T map is a `<newMap>` element with `<zones>`, `<sequence>` and `<entities>`",
+            ),
+        ]
     })?;
     let mut errs = Vec::new();
     let mut zones = Vec::new();
@@ -156,6 +157,18 @@ pub fn import(source: &str, file: &str) -> Result<Map, Vec<Diagnostic>> {
         Ok(result)
     } else {
         Err(errs)
+    }
+}
+
+/// The byte offset of the first XML syntax error (the deserializer does not say where it was).
+fn syntax_error_offset(source: &str) -> Option<usize> {
+    let mut reader = quick_xml::Reader::from_str(source);
+    loop {
+        match reader.read_event() {
+            Ok(quick_xml::events::Event::Eof) => return None,
+            Ok(_) => {}
+            Err(_) => return Some((reader.error_position() as usize).min(source.len())),
+        }
     }
 }
 

@@ -1,6 +1,5 @@
 //! `goal check FILE... [--format json]`: parse and validate files, print diagnostics.
 
-use goal::agent::load::check_path_with_agents;
 use goal::syntax::check::FileReport;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -31,7 +30,7 @@ pub fn main(args: Args) -> ExitCode {
     let reports: Vec<FileReport> = args
         .files
         .iter()
-        .flat_map(|f| check_path_with_agents(f))
+        .flat_map(|f| goal::mas::envcheck::check_path(f))
         .collect();
     let (mut errors, mut warnings) = (0usize, 0usize);
     for r in &reports {

@@ -135,6 +135,9 @@ pub fn main(args: Args) -> ExitCode {
         for w in &sys.warnings {
             eprint!("{}", w.render());
         }
+        if let Some(env) = &sys.env {
+            eprintln!("{}", env.describe());
+        }
     }
     let mut opts = RunOptions {
         seed: args.seed,

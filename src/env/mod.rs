@@ -10,6 +10,7 @@
 //! [`FromInitParams`] creates one from init parameters (key -> term).
 
 pub mod filter;
+pub mod suggest;
 pub mod thread;
 
 use crate::diag::Diagnostic;
@@ -18,6 +19,7 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 
 pub use filter::PerceptFilter;
+pub use suggest::{closest, did_you_mean, unknown_action};
 
 /// How a percept predicate is delivered (the BW4T3 interface's four kinds).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]

@@ -20,6 +20,8 @@
 //! * Mental models (§8.4) and CLAMR sessions (conversation tracking).
 
 pub mod default_team;
+pub mod envcheck;
+pub mod environment;
 pub mod launch;
 pub mod routing;
 pub mod run;

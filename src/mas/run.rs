@@ -3,6 +3,7 @@
 //! environment in agent-name order and messages are delivered for the next round in (sender,
 //! sequence) order. The result depends only on the programs, the map and the seed.
 
+use super::environment::EnvSetup;
 use super::launch::{Launch, Launcher};
 use super::routing::Router;
 use super::scheduler::{Job, Pool};
@@ -13,7 +14,6 @@ use crate::agent::{
     Agent, AgentConfig, Directory, Event, Message, PerceptType, PerceptTypes, StopReason,
     TraceLevel,
 };
-use crate::bw4t::Bw4t;
 use crate::diag::Diagnostic;
 use crate::env::thread::{EnvHandle, EnvInfo, Mode};
 use crate::env::{ActionResult, InitParams};
@@ -190,19 +190,31 @@ fn text_of(t: &Term) -> String {
 /// The environment's parameters with the run options applied; unknown keys are dropped with
 /// a warning (the BW4T of the Java distribution ignores them too).
 pub fn env_params(
-    params: &InitParams,
+    setup: &EnvSetup,
     opts: &RunOptions,
     obs: &mut dyn Observer,
 ) -> (InitParams, u64, String) {
     let mut p = InitParams::new();
-    for (k, v) in params {
-        if crate::bw4t::INIT_PARAMS.contains(&k.as_str()) {
+    let kind = setup.kind;
+    for (k, v) in &setup.params {
+        if kind.param_names().contains(&k.as_str()) {
             p.insert(k.clone(), v.clone());
         } else {
             obs.warning(&format!(
-                "init parameter `{k}` is not used by bw4t; ignored"
+                "init parameter `{k}` is not used by {}; ignored",
+                kind.name()
             ));
         }
+    }
+    if kind != super::environment::Builtin::Bw4t {
+        if opts.map.is_some() || opts.robots.is_some() {
+            obs.warning(&format!(
+                "--map and --robots are for bw4t, not {}; ignored",
+                kind.name()
+            ));
+        }
+        let seed = opts.seed.unwrap_or(0);
+        return (p, seed, String::new());
     }
     if let Some(s) = opts.seed {
         p.insert("seed".into(), Term::Int(s as i64));
@@ -235,18 +247,18 @@ impl<'a> Setup<'a> {
         let mut launcher = Launcher::new(&system.rules);
         let mut launches: Vec<Launch> = launcher.unconditional();
         let (env, info, seed, map) = match &system.env {
-            Some(params) => {
-                let (p, seed, map) = env_params(params, opts, obs);
-                let world = Bw4t::from_params(&p)
-                    .map_err(|ds| ds.into_iter().map(Problem::bare).collect::<Vec<_>>())?;
-                for w in world.warnings() {
+            Some(setup) => {
+                let (p, seed, map) = env_params(setup, opts, obs);
+                let (world, warnings) = setup.kind.create(&p)?;
+                for w in &warnings {
                     obs.warning(w);
                 }
-                let handle = EnvHandle::spawn(Box::new(world), Mode::LockStep);
+                let map = Some(map).filter(|m| !m.is_empty());
+                let handle = EnvHandle::spawn(world, Mode::LockStep);
                 let info = handle
                     .info()
                     .map_err(|e| problem("M0030", format!("environment: {e}")))?;
-                (Some(handle), Some(info), seed, Some(map))
+                (Some(handle), Some(info), seed, map)
             }
             None => (None, None, opts.seed.unwrap_or(0), None),
         };
@@ -367,7 +379,7 @@ impl<'a> Setup<'a> {
         if let Some(t) = trace.as_mut() {
             t.header(
                 &self.system.file,
-                self.env.as_ref().map(|_| "bw4t"),
+                self.system.env.as_ref().map(|e| e.kind.name()),
                 self.seed,
                 self.map.as_deref(),
                 &infos,

@@ -2,13 +2,11 @@
 //! agent file (parsed and validated once, shared by every agent of that file) and the launch
 //! rules. Loads from disk, from files built into the binary, or a single `.goal` file.
 
+use super::environment::{Builtin, EnvSetup};
 use crate::agent::Program;
 use crate::diag::Diagnostic;
-use crate::env::InitParams;
-use crate::syntax::mas2g::ast::{
-    AgentName, InitValue, LaunchInstruction, LaunchRule, MasFile, Spanned,
-};
-use crate::term::{Float, Term};
+use crate::syntax::mas2g::ast::{AgentName, LaunchInstruction, LaunchRule, Spanned};
+use crate::term::Term;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -80,8 +78,8 @@ impl Origin {
 pub struct MasSystem {
     /// The `.mas2g` file (or the single `.goal` file).
     pub file: String,
-    /// The built-in environment's init parameters; `None` runs without an environment.
-    pub env: Option<InitParams>,
+    /// The built-in environment and its init parameters; `None` runs without an environment.
+    pub env: Option<EnvSetup>,
     /// Compiled programs by reference name.
     pub programs: BTreeMap<String, Arc<Program>>,
     /// Agent file path (as loaded) by reference name.
@@ -107,6 +105,8 @@ pub fn from_mas_text(file: &str, text: &str, origin: Origin) -> Result<MasSystem
     if let Some(base) = origin.base_dir() {
         diags.extend(crate::syntax::mas2g::check_files(&mas, base));
     }
+    let (setup, env_diags) = super::envcheck::check_mas(&mas);
+    diags.extend(env_diags);
     let wrap = |d: Diagnostic| Problem {
         diagnostic: d,
         source: src.clone(),
@@ -123,7 +123,8 @@ pub fn from_mas_text(file: &str, text: &str, origin: Origin) -> Result<MasSystem
         rules: mas.launch_rules.clone(),
         warnings: warnings.into_iter().map(wrap).collect(),
     };
-    system.env = env_params(&mas, &origin);
+    system.env = setup.map(|s| with_map_path(s, &origin));
+    let kind = system.env.as_ref().map(|e| e.kind);
     let mut problems = Vec::new();
     let mut compiled: BTreeMap<String, (String, Arc<Program>)> = BTreeMap::new();
     for af in &mas.agent_files {
@@ -137,7 +138,7 @@ pub fn from_mas_text(file: &str, text: &str, origin: Origin) -> Result<MasSystem
             system.programs.insert(reference, Arc::clone(prog));
             continue;
         }
-        match compile_file(&origin, &af.path.value) {
+        match compile_file(&origin, &af.path.value, kind) {
             Ok((path, prog, warns)) => {
                 system.warnings.extend(warns);
                 compiled.insert(af.path.value.clone(), (path.clone(), prog.clone()));
@@ -159,7 +160,7 @@ pub fn load_agent(path: &Path) -> Result<MasSystem, Vec<Problem>> {
     let base = path.parent().unwrap_or(Path::new(".")).to_path_buf();
     let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("agent");
     let reference = name.strip_suffix(".goal").unwrap_or(name).to_string();
-    let (file, prog, warnings) = compile_file(&Origin::Disk(base), name)?;
+    let (file, prog, warnings) = compile_file(&Origin::Disk(base), name, None)?;
     let inst = LaunchInstruction {
         name: Some(AgentName::Given(Spanned::new(reference.clone(), 0..0))),
         reference: Spanned::new(reference.clone(), 0..0),
@@ -182,8 +183,13 @@ pub fn load_agent(path: &Path) -> Result<MasSystem, Vec<Problem>> {
 
 type Compiled = (String, Arc<Program>, Vec<Problem>);
 
-/// Reads, parses, validates and compiles one agent file.
-fn compile_file(origin: &Origin, path: &str) -> Result<Compiled, Vec<Problem>> {
+/// Reads, parses, validates and compiles one agent file; with an environment, also checks its
+/// `@env` actions and percept queries against it.
+fn compile_file(
+    origin: &Origin,
+    path: &str,
+    env: Option<Builtin>,
+) -> Result<Compiled, Vec<Problem>> {
     let (file, text) = origin.read(path).map_err(|d| vec![Problem::bare(d)])?;
     // The same front end as `goal check`: imports, validation and compilation.
     let loaded = crate::agent::load::load_goal(&file, &text, origin.base_dir());
@@ -194,57 +200,39 @@ fn compile_file(origin: &Origin, path: &str) -> Result<Compiled, Vec<Problem>> {
     let Some(prog) = loaded.program else {
         return Err(problems.filter(|p| p.diagnostic.is_error()).collect());
     };
-    let warnings: Vec<Problem> = problems.collect();
+    let mut warnings: Vec<Problem> = problems.collect();
+    if let Some(kind) = env {
+        // The environment's actions and percepts: the program parsed clean, so parse it again
+        // for its AST (cheap next to compiling it).
+        let (ast, _) = crate::syntax::goal::parse_goal(&file, &text);
+        let source: Arc<str> = Arc::from(text.as_str());
+        warnings.extend(
+            super::envcheck::check_program(kind, &ast)
+                .into_iter()
+                .map(|diagnostic| Problem {
+                    diagnostic,
+                    source: source.clone(),
+                }),
+        );
+    }
     Ok((file, prog, warnings))
 }
 
-/// The init parameters of a built-in `bw4t` environment section (the map path made relative to
-/// the `.mas2g` file when it names a file there).
-fn env_params(mas: &MasFile, origin: &Origin) -> Option<InitParams> {
-    let env = mas.environment.as_ref()?;
-    let name = env.env.as_ref()?;
-    if !name
-        .value
-        .eq_ignore_ascii_case(crate::syntax::mas2g::check::BUILTIN_ENV)
-    {
-        return None;
+/// The setup with a map file named relative to the `.mas2g` file made relative to the
+/// working directory (`\\` separators of Windows paths read as `/`).
+fn with_map_path(mut setup: EnvSetup, origin: &Origin) -> EnvSetup {
+    let (Some(map), Some(base)) = (setup.params.get("map"), origin.base_dir()) else {
+        return setup;
+    };
+    let text = match map {
+        Term::Atom(s) => s.name().to_string(),
+        Term::Str(s) => s.to_string(),
+        _ => return setup,
+    };
+    let path = text.replace('\\', "/");
+    if crate::bw4t::map::builtin(&text).is_none() && base.join(&path).is_file() {
+        let joined = base.join(&path).display().to_string();
+        setup.params.insert("map".into(), Term::string(&joined));
     }
-    let mut params = InitParams::new();
-    for p in &env.init {
-        // Duplicate keys: the first one counts (§9.2).
-        params
-            .entry(p.key.value.clone())
-            .or_insert_with(|| init_term(&p.value));
-    }
-    if let (Some(map), Some(base)) = (params.get("map").cloned(), origin.base_dir()) {
-        let text = match &map {
-            Term::Atom(s) => Some(s.name().to_string()),
-            Term::Str(s) => Some(s.to_string()),
-            _ => None,
-        };
-        if let Some(t) = text {
-            if crate::bw4t::map::builtin(&t).is_none() && base.join(&t).is_file() {
-                let joined = base.join(&t).display().to_string();
-                params.insert("map".into(), Term::string(&joined));
-            }
-        }
-    }
-    Some(params)
-}
-
-/// An init value as a term; nesting is bounded by the `.mas2g` lexer, and lists are built
-/// without recursion on their length.
-fn init_term(v: &InitValue) -> Term {
-    match v {
-        InitValue::Ident(s) => Term::atom(&s.value),
-        InitValue::Int(i) => Term::Int(i.value),
-        InitValue::Float(f) => Term::Float(Float(f.value)),
-        InitValue::Str(s) => Term::string(&s.value),
-        InitValue::Function { name, args, .. } => {
-            Term::compound(name.value.as_str(), args.iter().map(init_term).collect())
-        }
-        InitValue::List { items, .. } => {
-            Term::list(items.iter().map(init_term).collect::<Vec<_>>())
-        }
-    }
+    setup
 }

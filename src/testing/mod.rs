@@ -5,7 +5,6 @@
 //! Entry points: [`runner::run_file`] (one `.test2g` file to one [`report::TestReport`] per
 //! named test) and [`golden::check`] (a run against a recorded `goal run --trace` file).
 
-pub mod blocks;
 pub mod controller;
 pub mod golden;
 pub mod monitor;

@@ -6,18 +6,15 @@
 //! i-th launch. Blocks named `before` and `after` are not tests; their sections run before and
 //! after each test of that agent.
 
-use super::blocks::BlocksWorld;
 use super::controller::Controller;
 use super::report::{Outcome, TestReport};
 use crate::agent::{Agent, AgentConfig, Event, Message, StopReason, TraceLevel};
-use crate::bw4t::Bw4t;
 use crate::diag::Diagnostic;
 use crate::env::thread::{EnvHandle, Mode};
 use crate::mas::launch::{Launch, Launcher};
 use crate::mas::routing::Router;
 use crate::mas::run::{agent_seed, env_params, percept_types, Quiet, RunOptions};
 use crate::mas::{system, MasSystem};
-use crate::syntax::mas2g::ast::MasFile;
 use crate::syntax::test2g::ast::{MasTest, NamedTest, TestSection};
 use crate::term::Term;
 use std::path::Path;
@@ -83,11 +80,6 @@ pub fn run_file(path: &Path, opts: &TestOptions) -> Vec<TestReport> {
         return vec![error_report(&file, "-", "-", render(&errors, &source))];
     }
     let mas_path = base.join(&test.mas.value);
-    // A blocks world is not a `goal run` environment: find it in the MAS file here.
-    let blocks = crate::syntax::check::read_source(&mas_path)
-        .ok()
-        .map(|text| crate::syntax::mas2g::parse(&text, &mas_path.display().to_string()).0)
-        .filter(|m| BlocksWorld::from_mas(m).is_some());
     let system = match system::load_mas(&mas_path) {
         Ok(s) => s,
         Err(ps) => {
@@ -99,7 +91,6 @@ pub fn run_file(path: &Path, opts: &TestOptions) -> Vec<TestReport> {
     for jobs in plan(&test) {
         let ctx = Ctx {
             system: &system,
-            blocks: blocks.as_ref(),
             test: &test,
             file: &file,
             source: &source,
@@ -154,8 +145,6 @@ struct Slot {
 /// What every launch of a test file shares.
 struct Ctx<'a> {
     system: &'a MasSystem,
-    /// The MAS file when it asks for the blocks world.
-    blocks: Option<&'a MasFile>,
     test: &'a MasTest,
     file: &'a str,
     source: &'a str,
@@ -176,29 +165,19 @@ fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport
         ..RunOptions::default()
     };
     let (env, info, seed) = match &system.env {
-        Some(params) => {
-            let (p, seed, _) = env_params(params, &run_opts, &mut Quiet);
-            let world = match Bw4t::from_params(&p) {
-                Ok(w) => w,
-                Err(ds) => return fail_all(render(&ds, "")),
+        Some(setup) => {
+            let (p, seed, _) = env_params(setup, &run_opts, &mut Quiet);
+            let world = match setup.kind.create(&p) {
+                Ok((w, _)) => w,
+                Err(ps) => return fail_all(ps.iter().map(|p| p.render()).collect()),
             };
-            let handle = EnvHandle::spawn(Box::new(world), Mode::LockStep);
+            let handle = EnvHandle::spawn(world, Mode::LockStep);
             match handle.info() {
                 Ok(info) => (Some(handle), Some(info), seed),
                 Err(e) => return fail_all(format!("environment: {e}")),
             }
         }
-        None => match ctx.blocks.and_then(BlocksWorld::from_mas) {
-            Some(Ok(world)) => {
-                let handle = EnvHandle::spawn(Box::new(world), Mode::LockStep);
-                match handle.info() {
-                    Ok(info) => (Some(handle), Some(info), opts.seed.unwrap_or(0)),
-                    Err(e) => return fail_all(format!("environment: {e}")),
-                }
-            }
-            Some(Err(e)) => return fail_all(format!("blocks world: {e}")),
-            None => (None, None, opts.seed.unwrap_or(0)),
-        },
+        None => (None, None, opts.seed.unwrap_or(0)),
     };
     if let Some(info) = &info {
         for e in &info.entities {

@@ -168,8 +168,10 @@ fn ident_value(p: &RawParam, file: &str, diags: &mut Vec<Diagnostic>) -> Option<
 }
 
 fn agent_file(raw: RawAgentFile, file: &str, diags: &mut Vec<Diagnostic>) -> AgentFile {
+    // Windows separators in real files: `"agents\\robot.goal"`.
+    let path = Spanned::new(raw.path.value.replace('\\', "/"), raw.path.span);
     let mut out = AgentFile {
-        path: raw.path,
+        path,
         name: None,
         language: None,
         span: raw.span,

@@ -6,41 +6,11 @@ use crate::diag::Diagnostic;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-/// The name of the built-in environment (`env = "bw4t"`).
-pub const BUILTIN_ENV: &str = "bw4t";
-
 /// Checks `mas`, whose agent file paths are relative to `base_dir` (the `.mas2g` file's directory).
+/// The environment is checked by `mas::envcheck`, which knows the built-in environments.
 pub fn check_files(mas: &MasFile, base_dir: &Path) -> Vec<Diagnostic> {
     let file = mas.file.as_str();
     let mut diags = Vec::new();
-    if let Some(env) = mas.environment.as_ref().and_then(|e| e.env.as_ref()) {
-        if !env.value.eq_ignore_ascii_case(BUILTIN_ENV) {
-            if env.value.ends_with(".jar") && !base_dir.join(&env.value).is_file() {
-                diags.push(
-                    Diagnostic::error(
-                        "E0208",
-                        format!("environment file `{}` not found", env.value),
-                        file,
-                        env.span.clone(),
-                    )
-                    .with_hint("write `env = \"bw4t\".` for the built-in BW4T environment"),
-                );
-            } else {
-                diags.push(
-                    Diagnostic::warning(
-                        "W0207",
-                        format!(
-                            "environment `{}` is not built in; the runtime provides only `bw4t`",
-                            env.value
-                        ),
-                        file,
-                        env.span.clone(),
-                    )
-                    .with_hint("write `env = \"bw4t\".` for the built-in BW4T environment"),
-                );
-            }
-        }
-    }
     let mut refs: BTreeMap<String, usize> = BTreeMap::new();
     for (i, f) in mas.agent_files.iter().enumerate() {
         let path = &f.path.value;

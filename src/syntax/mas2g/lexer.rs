@@ -92,22 +92,20 @@ fn block_comment<'s>(lex: &mut logos::Lexer<'s, Tok<'s>>) -> bool {
     }
 }
 
-/// The text of a quoted string without its quotes, with `\x` escapes resolved to `x`
-/// (`\n` and `\t` to newline and tab).
+/// The text of a quoted string without its quotes. Only an escaped quote (`\"`, `\'`) is an
+/// escape: other backslashes are kept, since `.mas2g` strings are mostly Windows paths
+/// (`"environments\BW4T2\BW4TClient.jar"`).
 pub fn unescape(quoted: &str) -> String {
     let inner = &quoted[1..quoted.len() - 1];
     let mut out = String::with_capacity(inner.len());
-    let mut chars = inner.chars();
+    let mut chars = inner.chars().peekable();
     while let Some(c) = chars.next() {
-        if c == '\\' {
-            match chars.next() {
-                Some('n') => out.push('\n'),
-                Some('t') => out.push('\t'),
-                Some(other) => out.push(other),
-                None => out.push('\\'),
+        match (c, chars.peek()) {
+            ('\\', Some(&q)) if q == '"' || q == '\'' => {
+                out.push(q);
+                chars.next();
             }
-        } else {
-            out.push(c);
+            _ => out.push(c),
         }
     }
     out
