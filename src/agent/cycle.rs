@@ -41,6 +41,12 @@ pub struct CycleOutput {
     pub stopped: Option<StopReason>,
     /// Real actions performed (counted at every trace level).
     pub actions: u64,
+    /// The agent can do nothing more until new input (percepts or messages) arrives: another
+    /// cycle without input would provably repeat the same nothing. Such a cycle is not run
+    /// (see [`CycleOutput::skipped`]), so stepping a waiting agent or not is the same.
+    pub waiting: bool,
+    /// The step ran no cycle: the agent was waiting and got nothing new.
+    pub skipped: bool,
 }
 
 /// How to create an agent.
@@ -92,6 +98,9 @@ pub struct Core {
     pub kr_out: String,
     /// A test controller's observer of module entry/exit and actions.
     pub watcher: Option<Box<dyn Watcher>>,
+    /// Set when the cycle changed the state or drew on chance without performing a real
+    /// action (e.g. a module entered with `focus=select`): the agent is then not waiting.
+    pub unsettled: bool,
 }
 
 impl Core {
@@ -134,6 +143,8 @@ pub struct Agent {
     main: Vec<Frame>,
     main_entered: bool,
     acted_last: bool,
+    /// The last cycle left the agent waiting for new input.
+    waiting: bool,
     stopped: Option<StopReason>,
     /// Run by a test controller: `main` holds the current task instead of the main module.
     controlled: bool,
@@ -174,12 +185,14 @@ impl Agent {
                 max_steps: config.max_steps,
                 kr_out: String::new(),
                 watcher: None,
+                unsettled: false,
             },
             types: config.percept_types,
             cycle: 0,
             main: Vec::new(),
             main_entered: false,
             acted_last: false,
+            waiting: false,
             stopped: None,
             controlled: false,
         }
@@ -229,6 +242,7 @@ impl Agent {
             exiting: false,
         }));
         self.acted_last = true;
+        self.waiting = false;
     }
 
     /// True while a task started with [`Agent::start_task`] is unfinished.
@@ -246,6 +260,20 @@ impl Agent {
             });
         }
         self.main.clear();
+        self.waiting = false;
+    }
+
+    /// True when the agent can do nothing more until new input arrives.
+    pub fn waiting(&self) -> bool {
+        self.waiting
+    }
+
+    /// Sets the simulated time (seconds since the start of the run) that `get_time/1`
+    /// answers; `None`: wall-clock time.
+    pub fn set_clock(&mut self, now: Option<f64>) {
+        if let Ok(mut e) = self.core.ms.engine.try_borrow_mut() {
+            e.clock.now = now;
+        }
     }
 
     /// Installs (or removes, with `None`) the watcher; returns the previous one.
@@ -261,8 +289,17 @@ impl Agent {
                 ..CycleOutput::default()
             };
         }
+        if self.waiting && percepts.is_empty() && messages.is_empty() {
+            return CycleOutput {
+                waiting: true,
+                skipped: true,
+                ..CycleOutput::default()
+            };
+        }
         self.cycle += 1;
         self.core.out = CycleOutput::default();
+        self.core.unsettled = false;
+        let chance = self.chance();
         self.core.event(Event::CycleStart { cycle: self.cycle });
         match self.run_cycle(percepts, messages) {
             Ok(None) => {}
@@ -283,7 +320,22 @@ impl Agent {
                 .printed
                 .extend(text.lines().map(str::to_string));
         }
+        let out = &self.core.out;
+        self.waiting = self.stopped.is_none()
+            && !self.acted_last
+            && !self.core.unsettled
+            && out.actions == 0
+            && out.env_actions.is_empty()
+            && out.messages.is_empty()
+            && out.printed.is_empty()
+            && self.chance() == chance;
+        self.core.out.waiting = self.waiting;
         std::mem::take(&mut self.core.out)
+    }
+
+    /// Changes whenever the agent drew a random number or read the clock in a query.
+    fn chance(&self) -> u128 {
+        self.core.ms.engine.try_borrow().map_or(0, |e| e.chance())
     }
 
     fn stop(&mut self, reason: StopReason) {

@@ -112,6 +112,8 @@ impl Core {
                 true
             }
             (Focus::Select, Some((_, ans, _))) => {
+                // The goal picked may differ next time: not a settled state.
+                self.unsettled |= ans.goals.len() > 1;
                 let mut base = GoalBase::default();
                 if !ans.goals.is_empty() {
                     let i = self.rng.gen_range(0..ans.goals.len());
@@ -136,9 +138,11 @@ impl Core {
         });
         self.watch(Observed::ModuleEntered(&m.name));
         let mut ev = Vec::new();
+        let before = self.ms.beliefs.len();
         for b in &m.beliefs {
             self.ms.update(b, true, &mut ev)?;
         }
+        self.unsettled |= self.ms.beliefs.len() != before;
         self.changes(ev);
         for g in &m.goals {
             let g = subst.apply(g);

@@ -22,6 +22,10 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+/// Simulated seconds per tick: what `get_time/1` advances by per tick in lock-step runs (the
+/// BW4T server's default step delay), so runs are reproducible.
+pub const TICK_SECONDS: f64 = 0.01;
+
 /// How to run a system.
 #[derive(Clone, Debug)]
 pub struct RunOptions {
@@ -118,7 +122,8 @@ struct Slot {
     reference: String,
     entity: Option<String>,
     stats: AgentStats,
-    acted: bool,
+    /// The agent's last cycle left it waiting for new input (see `CycleOutput::waiting`).
+    waiting: bool,
     percepts: Vec<Term>,
     inbox: Vec<Message>,
     /// In the ready queue (something new for the next round).
@@ -297,7 +302,7 @@ impl<'a> Setup<'a> {
                     entity: l.entity.clone(),
                     ..AgentStats::default()
                 },
-                acted: true,
+                waiting: false,
                 percepts: Vec::new(),
                 inbox: Vec::new(),
                 queued: true,
@@ -383,7 +388,6 @@ impl<'a> Setup<'a> {
         let mut last_progress = Instant::now();
         let mut iters: u64 = 0;
         let mut alive = self.slots.iter().filter(|s| !s.stats.stopped).count();
-        let mut fresh = vec![false; self.slots.len()];
         let end = loop {
             if self.opts.time_limit.is_some_and(|l| start.elapsed() >= l) {
                 break EndReason::TimeLimit;
@@ -399,6 +403,8 @@ impl<'a> Setup<'a> {
                 (0..self.slots.len()).collect()
             };
             let mut jobs: Vec<Job> = Vec::with_capacity(candidates.len());
+            // Cycles that can do something (new input, or the agent is not waiting).
+            let mut due = 0usize;
             for i in candidates {
                 let s = &mut self.slots[i];
                 s.queued = false;
@@ -410,8 +416,10 @@ impl<'a> Setup<'a> {
                 // Rounds since the slot was last looked at had nothing new for it.
                 s.stats.idle_ticks += k - s.counted;
                 s.counted = k + 1;
-                let new = s.acted || !s.percepts.is_empty() || !s.inbox.is_empty();
-                fresh[i] = new;
+                let new = !s.waiting || !s.percepts.is_empty() || !s.inbox.is_empty();
+                due += usize::from(new);
+                // Without skipping, a waiting agent is stepped too: its step is a no-op by
+                // construction (`Agent::step`), so the trace is the same either way.
                 if new || !self.opts.skip_idle {
                     jobs.push((
                         i,
@@ -422,14 +430,15 @@ impl<'a> Setup<'a> {
                     s.stats.idle_ticks += 1;
                 }
             }
-            if jobs.is_empty() && self.env.is_none() {
+            if due == 0 && self.env.is_none() {
                 break if alive == 0 {
                     EndReason::AllStopped
                 } else {
                     EndReason::Idle
                 };
             }
-            let outputs = match self.pool.round(jobs) {
+            let clock = Some(tick as f64 * TICK_SECONDS);
+            let outputs = match self.pool.round(jobs, clock) {
                 Ok(o) => o,
                 Err(e) => {
                     obs.warning(&e.0);
@@ -442,16 +451,15 @@ impl<'a> Setup<'a> {
             for (i, out) in outputs {
                 let s = &mut self.slots[i];
                 let was_stopped = s.stats.stopped;
-                let new = std::mem::replace(&mut fresh[i], false);
-                s.stats.cycles += 1;
-                let performed = out.actions;
-                s.stats.actions += performed;
-                s.acted = performed > 0 || !out.env_actions.is_empty() || !out.messages.is_empty();
-                let idle = !new && !s.acted && out.printed.is_empty() && out.stopped.is_none();
-                if idle {
-                    // A cycle with nothing new that did nothing: as if it was skipped.
+                s.waiting = out.waiting;
+                if out.skipped {
+                    // A waiting agent stepped without new input ran no cycle.
                     s.stats.idle_ticks += 1;
-                } else if let Some(t) = trace.as_mut() {
+                    continue;
+                }
+                s.stats.cycles += 1;
+                s.stats.actions += out.actions;
+                if let Some(t) = trace.as_mut() {
                     t.cycle(round, tick, &s.name, &out.events);
                 }
                 for e in &out.events {
@@ -494,7 +502,7 @@ impl<'a> Setup<'a> {
                 }
                 if s.stats.stopped && !was_stopped {
                     alive -= 1;
-                } else if s.acted && !s.stats.stopped {
+                } else if !s.waiting && !s.stats.stopped {
                     mark(&mut self.ready, s, i);
                 }
             }
@@ -580,7 +588,7 @@ impl<'a> Setup<'a> {
             }
         };
         for s in self.slots.iter_mut().filter(|s| !s.stats.stopped) {
-            s.stats.idle_ticks += iters.saturating_sub(s.counted);
+            s.stats.idle_ticks += round.saturating_sub(s.counted);
         }
         let (deliveries, env_stats) = self.env_status();
         let summary = RunSummary {

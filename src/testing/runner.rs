@@ -9,13 +9,13 @@
 use super::blocks::BlocksWorld;
 use super::controller::Controller;
 use super::report::{Outcome, TestReport};
-use crate::agent::{Agent, AgentConfig, Event, Message, StopReason, TraceLevel};
+use crate::agent::{Agent, AgentConfig, Message, StopReason, TraceLevel};
 use crate::bw4t::Bw4t;
 use crate::diag::Diagnostic;
 use crate::env::thread::{EnvHandle, Mode};
 use crate::mas::launch::{Launch, Launcher};
 use crate::mas::routing::Router;
-use crate::mas::run::{agent_seed, env_params, percept_types, Quiet, RunOptions};
+use crate::mas::run::{agent_seed, env_params, percept_types, Quiet, RunOptions, TICK_SECONDS};
 use crate::mas::{system, MasSystem};
 use crate::syntax::mas2g::ast::MasFile;
 use crate::syntax::test2g::ast::{MasTest, NamedTest, TestSection};
@@ -31,6 +31,8 @@ pub struct TestOptions {
     pub max_ticks: u64,
     /// Replaces the MAS file's seed.
     pub seed: Option<u64>,
+    /// Do not step agents waiting for new input (the outcome is the same either way).
+    pub skip_idle: bool,
 }
 
 impl Default for TestOptions {
@@ -38,6 +40,7 @@ impl Default for TestOptions {
         TestOptions {
             max_ticks: 10_000,
             seed: None,
+            skip_idle: true,
         }
     }
 }
@@ -145,7 +148,6 @@ struct Slot {
     entity: Option<String>,
     agent: Agent,
     control: Option<(usize, Controller)>,
-    acted: bool,
     stopped: bool,
     percepts: Vec<Term>,
     inbox: Vec<Message>,
@@ -247,7 +249,6 @@ fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport
             entity: l.entity.clone(),
             agent,
             control,
-            acted: true,
             stopped: false,
             percepts: Vec::new(),
             inbox: Vec::new(),
@@ -319,7 +320,8 @@ fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport
                 continue;
             }
             let busy = s.control.as_ref().is_some_and(|(_, c)| c.busy(&s.agent));
-            if !busy && !s.acted && s.percepts.is_empty() && s.inbox.is_empty() {
+            let idle = s.agent.waiting() && s.percepts.is_empty() && s.inbox.is_empty();
+            if !busy && idle && opts.skip_idle {
                 continue;
             }
             if let Some((_, c)) = &s.control {
@@ -327,15 +329,11 @@ fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport
             }
             let percepts = std::mem::take(&mut s.percepts);
             let inbox = std::mem::take(&mut s.inbox);
+            s.agent.set_clock(Some(tick as f64 * TICK_SECONDS));
             let out = s.agent.step(&percepts, &inbox);
             if let Some((_, c)) = s.control.as_mut() {
                 c.after_step(&mut s.agent);
             }
-            let performed = out
-                .events
-                .iter()
-                .any(|e| matches!(e, Event::ActionPerformed { .. }));
-            s.acted = performed || !out.env_actions.is_empty() || !out.messages.is_empty();
             // An agent without an entity has no environment to act on: the action's
             // postcondition is its whole effect (e.g. the blocks-world stacker).
             if let Some(e) = &s.entity {
