@@ -265,7 +265,7 @@ fn cycle_limit_stops_a_single_agent() {
     let sys = load_agent(&path).expect("counter loads");
     let mut obs = Collect::default();
     let (s, _) = run(&sys, &opts(1, 10), None, &mut obs).expect("runs");
-    assert_eq!(s.end, EndReason::TickLimit);
+    assert_eq!(s.end, EndReason::CycleLimit);
     assert_eq!(s.ticks, 10);
     assert_eq!(obs.printed.len(), 10);
 }

@@ -146,7 +146,7 @@ fn skip_fixture(name: &str) -> PathBuf {
 #[test]
 fn a_linearall_main_that_only_prints_keeps_cycling() {
     let (s, trace) = same_both_ways(&skip_fixture("print_linearall.goal"), 5).expect("loads");
-    assert_eq!(s.end, EndReason::TickLimit, "{trace}");
+    assert_eq!(s.end, EndReason::CycleLimit, "{trace}");
     // One print (a real action) per cycle: first, second, first, second, first.
     assert_eq!(s.agents["print_linearall"].cycles, 5);
     assert_eq!(trace.matches("\"text\":\"first\"").count(), 3, "{trace}");

@@ -3,7 +3,7 @@
 //! it performs a real action) and returns what the agent did. No I/O, no threads.
 
 use super::directory::Directory;
-use super::error::RuntimeError;
+use super::error::{Fault, RuntimeError};
 use super::kr_bridge::Limits;
 use super::mailbox::Message;
 use super::mental_state::MentalState;
@@ -16,6 +16,7 @@ use crate::term::Term;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 /// Why an agent stopped.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -41,6 +42,9 @@ pub struct CycleOutput {
     pub stopped: Option<StopReason>,
     /// Real actions performed (counted at every trace level).
     pub actions: u64,
+    /// Where each environment action was performed (file, line, rule; the message is empty):
+    /// the location of the error when the environment refuses the action.
+    pub env_sites: Vec<RuntimeError>,
     /// The agent can do nothing more until new input (percepts or messages) arrives: another
     /// cycle without input would provably repeat the same nothing. Such a cycle is not run
     /// (see [`CycleOutput::skipped`]), so stepping a waiting agent or not is the same.
@@ -68,7 +72,16 @@ pub struct AgentConfig {
     pub max_steps: u64,
     /// How much to trace.
     pub trace: TraceLevel,
+    /// Wall time one cycle may take; a longer cycle is cut with a runtime error.
+    pub cycle_time: Option<Duration>,
+    /// Most facts the belief base may hold; an update going beyond is a runtime error.
+    pub max_beliefs: usize,
 }
+
+/// Default of [`AgentConfig::cycle_time`].
+pub const DEFAULT_CYCLE_TIME: Duration = Duration::from_secs(2);
+/// Default of [`AgentConfig::max_beliefs`].
+pub const DEFAULT_MAX_BELIEFS: usize = 1_000_000;
 
 impl Default for AgentConfig {
     fn default() -> Self {
@@ -80,6 +93,8 @@ impl Default for AgentConfig {
             limits: Limits::default(),
             max_steps: 1_000_000,
             trace: TraceLevel::Rules,
+            cycle_time: Some(DEFAULT_CYCLE_TIME),
+            max_beliefs: DEFAULT_MAX_BELIEFS,
         }
     }
 }
@@ -94,6 +109,11 @@ pub struct Core {
     pub known: Arc<Directory>,
     pub level: TraceLevel,
     pub max_steps: u64,
+    /// Wall time one cycle may take, and when the running cycle must end.
+    pub cycle_time: Option<Duration>,
+    pub deadline: Option<Instant>,
+    /// Most facts the belief base may hold.
+    pub max_beliefs: usize,
     /// Output of Prolog write/format built-ins.
     pub kr_out: String,
     /// A test controller's observer of module entry/exit and actions.
@@ -117,6 +137,24 @@ impl Core {
         if self.level >= need {
             self.out.events.push(e);
         }
+    }
+
+    /// Checks the per-cycle quotas (wall time, belief count): an error when one is exceeded.
+    pub fn check_quotas(&self) -> Result<(), Fault> {
+        if self.deadline.is_some_and(|d| Instant::now() >= d) {
+            let t = self.cycle_time.unwrap_or_default();
+            return Err(Fault::new(format!(
+                "the cycle took longer than its time quota of {} (--cycle-time)",
+                show_duration(t)
+            )));
+        }
+        if self.ms.beliefs.len() > self.max_beliefs {
+            return Err(Fault::new(format!(
+                "the belief base holds more than {} facts, the quota (--max-beliefs)",
+                self.max_beliefs
+            )));
+        }
+        Ok(())
     }
 
     /// Records several events.
@@ -183,6 +221,9 @@ impl Agent {
                 known,
                 level: config.trace,
                 max_steps: config.max_steps,
+                cycle_time: config.cycle_time,
+                deadline: None,
+                max_beliefs: config.max_beliefs,
                 kr_out: String::new(),
                 watcher: None,
                 unsettled: false,
@@ -299,6 +340,10 @@ impl Agent {
         self.cycle += 1;
         self.core.out = CycleOutput::default();
         self.core.unsettled = false;
+        self.core.deadline = self
+            .core
+            .cycle_time
+            .and_then(|t| Instant::now().checked_add(t));
         let chance = self.chance();
         self.core.event(Event::CycleStart { cycle: self.cycle });
         match self.run_cycle(percepts, messages) {
@@ -331,6 +376,16 @@ impl Agent {
             && self.chance() == chance;
         self.core.out.waiting = self.waiting;
         std::mem::take(&mut self.core.out)
+    }
+
+    /// Stops the agent from outside with a runtime error (e.g. the environment refused one
+    /// of its actions, which GOAL treats as fatal for the agent).
+    pub fn halt(&mut self, e: RuntimeError) {
+        if self.stopped.is_none() {
+            self.stopped = Some(StopReason::Error(e));
+            self.main.clear();
+            self.waiting = false;
+        }
     }
 
     /// Changes whenever the agent drew a random number or read the clock in a query.
@@ -429,4 +484,9 @@ impl Agent {
         core.run(prog, &mut stack, false)?;
         Ok(())
     }
+}
+
+/// A duration as seconds, e.g. `2s` or `0.5s`.
+pub fn show_duration(d: Duration) -> String {
+    format!("{}s", d.as_secs_f64())
 }

@@ -178,6 +178,10 @@ impl Core {
         let mut steps: u64 = 0;
         loop {
             steps += 1;
+            // The clock is read every 64 steps only: a step is cheap, reading the clock not.
+            if steps % 64 == 0 {
+                self.check_quotas().map_err(|e| self.error(prog, None, e))?;
+            }
             if steps > self.max_steps {
                 return Err(self.error(
                     prog,
@@ -341,10 +345,16 @@ impl Core {
                         }
                         act => {
                             let s = c.answer.subst.clone();
-                            match self
+                            let sent = self.out.env_actions.len();
+                            let outcome = self
                                 .perform(prog, act, &s)
-                                .map_err(|e| self.error(prog, loc, e))?
-                            {
+                                .and_then(|o| self.check_quotas().map(|_| o))
+                                .map_err(|e| self.error(prog, loc, e))?;
+                            for _ in sent..self.out.env_actions.len() {
+                                let at = self.error(prog, loc, Fault::new(""));
+                                self.out.env_sites.push(at);
+                            }
+                            match outcome {
                                 Outcome::NotRun => {
                                     if let Some(Frame::Combo(c)) = stack.last_mut() {
                                         c.next = usize::MAX;

@@ -10,8 +10,8 @@ use super::stats::{AgentStats, Deliveries, EndReason, RunSummary};
 use super::system::{MasSystem, Problem};
 use super::trace::{AgentInfo, TraceWriter};
 use crate::agent::{
-    Agent, AgentConfig, Directory, Event, Message, PerceptType, PerceptTypes, StopReason,
-    TraceLevel,
+    Agent, AgentConfig, Directory, Event, Message, PerceptType, PerceptTypes, RuntimeError,
+    StopReason, TraceLevel,
 };
 use crate::bw4t::Bw4t;
 use crate::diag::Diagnostic;
@@ -19,6 +19,7 @@ use crate::env::thread::{EnvHandle, EnvInfo, Mode};
 use crate::env::{ActionResult, InitParams};
 use crate::term::{Style, Term};
 use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -47,7 +48,24 @@ pub struct RunOptions {
     pub time_limit: Option<Duration>,
     /// Record every rule evaluation (needed for a full trace); otherwise only changes.
     pub trace_rules: bool,
+    /// Set to a signal number (non-zero) to stop the run after the round under way.
+    pub interrupt: Option<Arc<AtomicUsize>>,
+    /// Stop the run when the process's resident memory exceeds this many bytes.
+    pub max_memory: Option<u64>,
+    /// Wall time one cycle of an agent may take (a longer cycle is cut: runtime error).
+    pub cycle_time: Option<Duration>,
+    /// Most facts an agent's belief base may hold (more: runtime error of that agent).
+    pub max_beliefs: usize,
+    /// Most messages waiting for an agent in one round; more are dropped and reported.
+    pub max_mailbox: usize,
 }
+
+/// Default of [`RunOptions::max_memory`]: 4 GiB.
+pub const DEFAULT_MAX_MEMORY: u64 = 4 << 30;
+/// Default of [`RunOptions::max_mailbox`].
+pub const DEFAULT_MAX_MAILBOX: usize = 100_000;
+/// How often the resident memory is checked against the cap.
+const MEMORY_CHECK_EVERY: Duration = Duration::from_millis(20);
 
 impl Default for RunOptions {
     fn default() -> Self {
@@ -61,6 +79,11 @@ impl Default for RunOptions {
             realtime: None,
             time_limit: None,
             trace_rules: true,
+            interrupt: None,
+            max_memory: Some(DEFAULT_MAX_MEMORY),
+            cycle_time: Some(crate::agent::DEFAULT_CYCLE_TIME),
+            max_beliefs: crate::agent::DEFAULT_MAX_BELIEFS,
+            max_mailbox: DEFAULT_MAX_MAILBOX,
         }
     }
 }
@@ -288,6 +311,8 @@ impl<'a> Setup<'a> {
                 directory: Some(directory.clone()),
                 percept_types: types.clone(),
                 trace: level,
+                cycle_time: opts.cycle_time,
+                max_beliefs: opts.max_beliefs,
                 ..AgentConfig::default()
             };
             agents.push(Agent::new(prog.clone(), &l.name, config));
@@ -388,9 +413,10 @@ impl<'a> Setup<'a> {
         let mut last_progress = Instant::now();
         let mut iters: u64 = 0;
         let mut alive = self.slots.iter().filter(|s| !s.stats.stopped).count();
+        let mut memory_checked = start;
         let end = loop {
-            if self.opts.time_limit.is_some_and(|l| start.elapsed() >= l) {
-                break EndReason::TimeLimit;
+            if let Some(reason) = self.interrupted_or_over(start, &mut memory_checked, obs) {
+                break reason;
             }
             let k = iters;
             iters += 1;
@@ -447,6 +473,7 @@ impl<'a> Setup<'a> {
             };
             let mut actions: Vec<(String, Term)> = Vec::new();
             let mut actors: Vec<usize> = Vec::new();
+            let mut sites: Vec<RuntimeError> = Vec::new();
             let mut sent: Vec<Message> = Vec::new();
             for (i, out) in outputs {
                 let s = &mut self.slots[i];
@@ -470,12 +497,14 @@ impl<'a> Setup<'a> {
                 for line in &out.printed {
                     obs.printed(&s.name, line);
                 }
+                let mut at = out.env_sites.into_iter();
                 for a in out.env_actions {
                     match &s.entity {
                         Some(e) => {
                             s.stats.env_actions += 1;
                             actions.push((e.clone(), a));
                             actors.push(i);
+                            sites.push(at.next().unwrap_or_default());
                         }
                         None => {
                             let msg =
@@ -509,22 +538,23 @@ impl<'a> Setup<'a> {
             // Messages: (sender, sequence) order; a stable sort keeps each sender's sequence.
             sent.sort_by(|a, b| a.sender.cmp(&b.sender));
             messages += sent.len() as u64;
-            for m in &sent {
-                let known = self.router.index(&m.receiver).is_some();
-                if let Some(t) = trace.as_mut() {
-                    t.message(round, tick, m, known);
-                }
-                obs.message(round, m, known);
-            }
             for m in sent {
-                match self.router.index(&m.receiver) {
-                    Some(j) => {
+                let receiver = self.router.index(&m.receiver);
+                let full = receiver.is_some_and(|j| self.mailbox_full(j, round, tick, obs));
+                let delivered = receiver.is_some() && !full;
+                if let Some(t) = trace.as_mut() {
+                    t.message(round, tick, &m, delivered);
+                }
+                obs.message(round, &m, delivered);
+                match receiver {
+                    Some(j) if !full => {
                         let s = &mut self.slots[j];
                         if !s.stats.stopped {
                             s.inbox.push(m);
                             mark(&mut self.ready, s, j);
                         }
                     }
+                    Some(_) => {}
                     None => obs.warning(&format!(
                         "message {} from {} to unknown agent {} dropped",
                         m.content, m.sender, m.receiver
@@ -545,7 +575,14 @@ impl<'a> Setup<'a> {
                         }
                         for (k, (_, result)) in reply.results.iter().enumerate() {
                             if let ActionResult::Failed(m) = result {
-                                obs.action_failed(&self.slots[actors[k]].name, &actions[k].1, m);
+                                let i = actors[k];
+                                obs.action_failed(&self.slots[i].name, &actions[k].1, m);
+                                let mut e = std::mem::take(&mut sites[k]);
+                                e.message =
+                                    format!("environment action {} failed: {m}", actions[k].1);
+                                if self.halt(i, e, round, tick, trace.as_mut(), obs) {
+                                    alive -= 1;
+                                }
                             }
                         }
                         tick = reply.tick;
@@ -577,12 +614,17 @@ impl<'a> Setup<'a> {
                 break EndReason::AllStopped;
             }
             if tick >= self.opts.max_ticks {
-                break EndReason::TickLimit;
+                break match self.env {
+                    Some(_) => EndReason::TickLimit,
+                    None => EndReason::CycleLimit,
+                };
             }
             if let Some(tps) = self.opts.realtime.filter(|t| *t > 0.0 && t.is_finite()) {
-                let due = start + Duration::from_secs_f64(round as f64 / tps);
+                let due = Duration::try_from_secs_f64(round as f64 / tps)
+                    .ok()
+                    .and_then(|d| start.checked_add(d));
                 let now = Instant::now();
-                if due > now {
+                if let Some(due) = due.filter(|d| *d > now) {
                     std::thread::sleep(due - now);
                 }
             }
@@ -615,6 +657,92 @@ impl<'a> Setup<'a> {
             None => None,
         };
         (summary, err)
+    }
+
+    /// Why the run must stop before the next round, if it must: a signal, the wall-time
+    /// limit, or the memory cap (checked every [`MEMORY_CHECK_EVERY`]).
+    fn interrupted_or_over(
+        &self,
+        start: Instant,
+        memory_checked: &mut Instant,
+        obs: &mut dyn Observer,
+    ) -> Option<EndReason> {
+        if self
+            .opts
+            .interrupt
+            .as_ref()
+            .is_some_and(|f| f.load(Ordering::Relaxed) != 0)
+        {
+            return Some(EndReason::Interrupted);
+        }
+        if self.opts.time_limit.is_some_and(|l| start.elapsed() >= l) {
+            return Some(EndReason::TimeLimit);
+        }
+        let cap = self.opts.max_memory?;
+        if memory_checked.elapsed() < MEMORY_CHECK_EVERY {
+            return None;
+        }
+        *memory_checked = Instant::now();
+        let used = super::memory::resident_bytes()?;
+        if used <= cap {
+            return None;
+        }
+        obs.warning(&format!(
+            "the run uses {} MiB of memory, more than its cap of {} MiB (--max-memory); stopping",
+            used >> 20,
+            cap >> 20
+        ));
+        Some(EndReason::MemoryLimit)
+    }
+
+    /// True when agent `j` has as many messages waiting as its mailbox may hold: the message
+    /// is dropped, counted, and reported the first time.
+    fn mailbox_full(&mut self, j: usize, round: u64, tick: u64, obs: &mut dyn Observer) -> bool {
+        let max = self.opts.max_mailbox;
+        let s = &mut self.slots[j];
+        if s.inbox.len() < max {
+            return false;
+        }
+        if s.stats.messages_dropped == 0 {
+            obs.warning(&format!(
+                "{}: mailbox full ({max} messages waiting, --max-mailbox); further messages to it \
+                 are dropped (round {round}, tick {tick})",
+                s.name
+            ));
+        }
+        s.stats.messages_dropped += 1;
+        true
+    }
+
+    /// Stops agent `i` on runtime error `e` from outside its cycle (the agent, its slot, the
+    /// trace and the observer all learn it); true when it was running.
+    fn halt(
+        &mut self,
+        i: usize,
+        e: RuntimeError,
+        round: u64,
+        tick: u64,
+        trace: Option<&mut TraceWriter>,
+        obs: &mut dyn Observer,
+    ) -> bool {
+        let s = &mut self.slots[i];
+        if s.stats.stopped {
+            return false;
+        }
+        let text = e.to_string();
+        if let Some(t) = trace {
+            t.warning(
+                round,
+                tick,
+                &s.name,
+                &format!("stopped: runtime error: {text}"),
+            );
+        }
+        obs.warning(&format!("agent {} stopped: {text}", s.name));
+        s.stats.stopped = true;
+        s.stats.error = Some(text);
+        self.pool.halt(i, e);
+        true
     }
 
     fn agent_infos(&self) -> Vec<AgentInfo> {

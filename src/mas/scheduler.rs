@@ -89,6 +89,13 @@ impl Pool {
         })
     }
 
+    /// Stops agent `i` with a runtime error (between rounds).
+    pub fn halt(&self, i: usize, e: crate::agent::RuntimeError) {
+        if let Some(Ok(mut a)) = self.agents.get(i).map(|m| m.lock()) {
+            a.halt(e);
+        }
+    }
+
     /// The number of threads running agents (the calling thread included).
     pub fn workers(&self) -> usize {
         self.workers.len() + 1
