@@ -15,9 +15,10 @@ Exit codes:
   3    the run hit its tick, cycle or time limit before completing
   4    an agent stopped on a runtime error (also a refused environment action)
   5    the run exceeded its memory cap (--max-memory)
-  130  interrupted by Ctrl-C (SIGINT); 143: by SIGTERM (the run still writes its trace
-       end record and stats)
-  141  standard output was closed early (e.g. piped into head)";
+  130  interrupted by Ctrl-C (SIGINT): the run still finishes its round and writes
+       the trace's end record and the stats
+  141  standard output was closed early (e.g. piped into head)
+  143  stopped by SIGTERM (like Ctrl-C)";
 
 /// A fast, deterministic runtime for GOAL agent programs.
 #[derive(Parser)]

@@ -72,7 +72,8 @@ pub struct AgentConfig {
     pub max_steps: u64,
     /// How much to trace.
     pub trace: TraceLevel,
-    /// Wall time one cycle may take; a longer cycle is cut with a runtime error.
+    /// Wall time one cycle may take; a longer cycle is cut with a runtime error (`None`: no
+    /// limit; runs use [`DEFAULT_CYCLE_TIME`]).
     pub cycle_time: Option<Duration>,
     /// Most facts the belief base may hold; an update going beyond is a runtime error.
     pub max_beliefs: usize,
@@ -93,7 +94,7 @@ impl Default for AgentConfig {
             limits: Limits::default(),
             max_steps: 1_000_000,
             trace: TraceLevel::Rules,
-            cycle_time: Some(DEFAULT_CYCLE_TIME),
+            cycle_time: None,
             max_beliefs: DEFAULT_MAX_BELIEFS,
         }
     }
@@ -139,8 +140,8 @@ impl Core {
         }
     }
 
-    /// Checks the per-cycle quotas (wall time, belief count): an error when one is exceeded.
-    pub fn check_quotas(&self) -> Result<(), Fault> {
+    /// Checks the cycle's time quota: an error when the cycle ran too long.
+    pub fn check_deadline(&self) -> Result<(), Fault> {
         if self.deadline.is_some_and(|d| Instant::now() >= d) {
             let t = self.cycle_time.unwrap_or_default();
             return Err(Fault::new(format!(
@@ -148,6 +149,11 @@ impl Core {
                 show_duration(t)
             )));
         }
+        Ok(())
+    }
+
+    /// Checks the belief quota: an error when the belief base holds too many facts.
+    pub fn check_beliefs(&self) -> Result<(), Fault> {
         if self.ms.beliefs.len() > self.max_beliefs {
             return Err(Fault::new(format!(
                 "the belief base holds more than {} facts, the quota (--max-beliefs)",

@@ -180,7 +180,8 @@ impl Core {
             steps += 1;
             // The clock is read every 64 steps only: a step is cheap, reading the clock not.
             if steps % 64 == 0 {
-                self.check_quotas().map_err(|e| self.error(prog, None, e))?;
+                self.check_deadline()
+                    .map_err(|e| self.error(prog, running_rule(prog, stack), e))?;
             }
             if steps > self.max_steps {
                 return Err(self.error(
@@ -348,7 +349,7 @@ impl Core {
                             let sent = self.out.env_actions.len();
                             let outcome = self
                                 .perform(prog, act, &s)
-                                .and_then(|o| self.check_quotas().map(|_| o))
+                                .and_then(|o| self.check_beliefs().map(|_| o))
                                 .map_err(|e| self.error(prog, loc, e))?;
                             for _ in sent..self.out.env_actions.len() {
                                 let at = self.error(prog, loc, Fault::new(""));
@@ -429,6 +430,17 @@ impl Core {
             binding: f.binding,
         }
     }
+}
+
+/// The rule being run on top of `stack` (block, rule, line), for locating an error raised
+/// between steps.
+fn running_rule(prog: &Program, stack: &[Frame]) -> Option<(usize, usize, usize)> {
+    let (b, r) = stack.iter().rev().find_map(|f| match f {
+        Frame::Rule(r) => Some((r.block, r.rule)),
+        Frame::Combo(c) => Some((c.block, c.rule)),
+        Frame::Module(_) => None,
+    })?;
+    Some((b, r, prog.blocks.get(b)?.rules.get(r)?.line))
 }
 
 /// Passes a child's "performed a real action" result to its parent frame.

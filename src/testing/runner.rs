@@ -226,6 +226,7 @@ fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport
             agents: names.clone(),
             percept_types: types.clone(),
             trace: TraceLevel::Changes,
+            cycle_time: Some(crate::agent::DEFAULT_CYCLE_TIME),
             ..AgentConfig::default()
         };
         let job = jobs.iter().position(|j| j.agent == l.name);
