@@ -100,6 +100,8 @@ fn every_program_runs_the_same_with_and_without_skipping() {
         files(&root().join(dir), "mas2g", &mut all);
         files(&root().join(dir), "goal", &mut all);
     }
+    // The hoarder runs into its cycle-time quota: a timing-dependent end by design.
+    all.retain(|p| !p.ends_with("runtime/hoarder.goal"));
     let mut runnable = Vec::new();
     for p in &all {
         if same_both_ways(p, 300).is_some() {

@@ -10,9 +10,10 @@ use super::stats::{AgentStats, Deliveries, EndReason, RunSummary};
 use super::system::{MasSystem, Problem};
 use super::trace::{AgentInfo, TraceWriter};
 use crate::agent::{
-    Agent, AgentConfig, Directory, Event, Message, PerceptType, PerceptTypes, RuntimeError,
-    StopReason, TraceLevel,
+    Agent, AgentConfig, Directory, Event, Message, PerceptType, PerceptTypes, Program,
+    RuntimeError, StopReason, TraceLevel,
 };
+use crate::env::Environment;
 use crate::bw4t::Bw4t;
 use crate::diag::Diagnostic;
 use crate::env::thread::{EnvHandle, EnvInfo, Mode};
@@ -116,6 +117,44 @@ pub trait Observer {
     /// Every agent is created and the first round is about to start (benchmarks time the
     /// creation apart from the run).
     fn started(&mut self, _agents: usize, _workers: usize) {}
+
+    // A test controller takes part in the run through the methods below (`goal test` runs
+    // on this same round driver); plain observers keep the defaults.
+
+    /// The environment to run instead of the MAS file's, if any (e.g. a test's blocks world).
+    fn environment(&mut self) -> Option<Result<Box<dyn Environment>, String>> {
+        None
+    }
+    /// Agent `i` (`name`, running `program`): an observer may create it itself, e.g. a tested
+    /// agent running an extended program under a controller; `None`: the usual agent.
+    fn agent(
+        &mut self,
+        _i: usize,
+        _name: &str,
+        _program: &Arc<Program>,
+        _config: &AgentConfig,
+    ) -> Option<Agent> {
+        None
+    }
+    /// The agents the observer steers (by index): they are stepped whenever
+    /// [`Observer::busy`] says so, and shown to the observer before and after each step.
+    fn steers(&self) -> Vec<usize> {
+        Vec::new()
+    }
+    /// True when steered agent `i` must be stepped this round even without new input.
+    fn busy(&self, _i: usize, _agent: &Agent) -> bool {
+        false
+    }
+    /// Steered agent `i` is about to be stepped.
+    fn before_step(&mut self, _i: usize, _agent: &Agent) {}
+    /// Steered agent `i` was stepped.
+    fn after_step(&mut self, _i: usize, _agent: &mut Agent) {}
+    /// True when the observer has what it needs: the run ends ([`EndReason::Released`]).
+    fn done(&self) -> bool {
+        false
+    }
+    /// The run ended: a last look at steered agent `i`.
+    fn ended(&mut self, _i: usize, _agent: &mut Agent, _end: EndReason) {}
 }
 
 /// An observer that ignores everything.
@@ -262,7 +301,18 @@ impl<'a> Setup<'a> {
     ) -> Result<Setup<'a>, Vec<Problem>> {
         let mut launcher = Launcher::new(&system.rules);
         let mut launches: Vec<Launch> = launcher.unconditional();
+        let custom = obs.environment();
         let (env, info, seed, map) = match &system.env {
+            _ if custom.is_some() => {
+                let world = custom
+                    .unwrap_or_else(|| Err(String::new()))
+                    .map_err(|e| problem("M0030", format!("environment: {e}")))?;
+                let handle = EnvHandle::spawn(world, Mode::LockStep);
+                let info = handle
+                    .info()
+                    .map_err(|e| problem("M0030", format!("environment: {e}")))?;
+                (Some(handle), Some(info), opts.seed.unwrap_or(0), None)
+            }
             Some(params) => {
                 let (p, seed, map) = env_params(params, opts, obs);
                 let world = Bw4t::from_params(&p)
@@ -315,7 +365,8 @@ impl<'a> Setup<'a> {
                 max_beliefs: opts.max_beliefs,
                 ..AgentConfig::default()
             };
-            agents.push(Agent::new(prog.clone(), &l.name, config));
+            let agent = obs.agent(i, &l.name, prog, &config);
+            agents.push(agent.unwrap_or_else(|| Agent::new(prog.clone(), &l.name, config)));
             if let Some(e) = &l.entity {
                 by_entity.entry(e.clone()).or_default().push(i);
             }
@@ -414,10 +465,16 @@ impl<'a> Setup<'a> {
         let mut iters: u64 = 0;
         let mut alive = self.slots.iter().filter(|s| !s.stats.stopped).count();
         let mut memory_checked = start;
+        let steered = obs.steers();
+        let mut env_finished = false;
         let end = loop {
             if let Some(reason) = self.interrupted_or_over(start, &mut memory_checked, obs) {
                 break reason;
             }
+            if obs.done() {
+                break EndReason::Released;
+            }
+            let forced = self.busy_steered(&steered, obs);
             let k = iters;
             iters += 1;
             let candidates: Vec<usize> = if self.opts.skip_idle {
@@ -442,7 +499,10 @@ impl<'a> Setup<'a> {
                 // Rounds since the slot was last looked at had nothing new for it.
                 s.stats.idle_ticks += k - s.counted;
                 s.counted = k + 1;
-                let new = !s.waiting || !s.percepts.is_empty() || !s.inbox.is_empty();
+                let new = !s.waiting
+                    || !s.percepts.is_empty()
+                    || !s.inbox.is_empty()
+                    || forced.contains(&i);
                 due += usize::from(new);
                 // Without skipping, a waiting agent is stepped too: its step is a no-op by
                 // construction (`Agent::step`), so the trace is the same either way.
@@ -462,6 +522,14 @@ impl<'a> Setup<'a> {
                 } else {
                     EndReason::Idle
                 };
+            }
+            let stepped: Vec<usize> = steered
+                .iter()
+                .copied()
+                .filter(|i| jobs.iter().any(|j| j.0 == *i))
+                .collect();
+            for &i in &stepped {
+                self.pool.with_agent(i, |a| obs.before_step(i, a));
             }
             let clock = Some(tick as f64 * TICK_SECONDS);
             let outputs = match self.pool.round(jobs, clock) {
@@ -535,6 +603,17 @@ impl<'a> Setup<'a> {
                     mark(&mut self.ready, s, i);
                 }
             }
+            for &i in &stepped {
+                let waiting = self.pool.with_agent(i, |a| {
+                    obs.after_step(i, a);
+                    a.waiting()
+                });
+                let s = &mut self.slots[i];
+                s.waiting = waiting.unwrap_or(true);
+                if !s.waiting && !s.stats.stopped {
+                    mark(&mut self.ready, s, i);
+                }
+            }
             // Messages: (sender, sequence) order; a stable sort keeps each sender's sequence.
             sent.sort_by(|a, b| a.sender.cmp(&b.sender));
             messages += sent.len() as u64;
@@ -563,6 +642,8 @@ impl<'a> Setup<'a> {
             }
             let mut finished = false;
             match &self.env {
+                // A finished environment stays as it is while a controller goes on.
+                Some(_) if env_finished => tick += 1,
                 Some(h) => match h.round(actions.clone()) {
                     Ok(reply) => {
                         if let Some(t) = trace.as_mut() {
@@ -607,9 +688,10 @@ impl<'a> Setup<'a> {
                     messages,
                 });
             }
-            if finished {
+            if finished && steered.is_empty() {
                 break EndReason::Completed;
             }
+            env_finished |= finished;
             if alive == 0 {
                 break EndReason::AllStopped;
             }
@@ -631,6 +713,9 @@ impl<'a> Setup<'a> {
         };
         for s in self.slots.iter_mut().filter(|s| !s.stats.stopped) {
             s.stats.idle_ticks += round.saturating_sub(s.counted);
+        }
+        for &i in &steered {
+            self.pool.with_agent(i, |a| obs.ended(i, a, end));
         }
         let (deliveries, env_stats) = self.env_status();
         let summary = RunSummary {
@@ -657,6 +742,21 @@ impl<'a> Setup<'a> {
             None => None,
         };
         (summary, err)
+    }
+
+    /// The steered agents that must be stepped this round (queued for it).
+    fn busy_steered(&mut self, steered: &[usize], obs: &mut dyn Observer) -> Vec<usize> {
+        let mut busy = Vec::new();
+        for &i in steered {
+            if self.slots[i].stats.stopped {
+                continue;
+            }
+            if self.pool.with_agent(i, |a| obs.busy(i, a)) == Some(true) {
+                busy.push(i);
+                mark(&mut self.ready, &mut self.slots[i], i);
+            }
+        }
+        busy
     }
 
     /// Why the run must stop before the next round, if it must: a signal, the wall-time

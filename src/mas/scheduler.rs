@@ -91,9 +91,13 @@ impl Pool {
 
     /// Stops agent `i` with a runtime error (between rounds).
     pub fn halt(&self, i: usize, e: crate::agent::RuntimeError) {
-        if let Some(Ok(mut a)) = self.agents.get(i).map(|m| m.lock()) {
-            a.halt(e);
-        }
+        self.with_agent(i, |a| a.halt(e));
+    }
+
+    /// Runs `f` on agent `i` (between rounds); `None` when there is no such agent.
+    pub fn with_agent<T>(&self, i: usize, f: impl FnOnce(&mut Agent) -> T) -> Option<T> {
+        let mut a = self.agents.get(i)?.lock().ok()?;
+        Some(f(&mut a))
     }
 
     /// The number of threads running agents (the calling thread included).

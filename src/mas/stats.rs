@@ -61,6 +61,8 @@ pub enum EndReason {
     MemoryLimit,
     /// Interrupted by a signal (Ctrl-C, SIGTERM); the round under way was finished.
     Interrupted,
+    /// The observer steering the run (a test controller) had what it needed.
+    Released,
     /// The environment or a worker thread failed.
     Failure,
 }
@@ -77,6 +79,7 @@ impl EndReason {
             EndReason::TimeLimit => "time limit reached",
             EndReason::MemoryLimit => "memory cap exceeded",
             EndReason::Interrupted => "interrupted",
+            EndReason::Released => "the tests are over",
             EndReason::Failure => "runtime failure",
         }
     }
