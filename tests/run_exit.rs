@@ -352,3 +352,18 @@ fn goal_test_reports_every_file_of_a_directory_when_one_breaks() {
         "{out}"
     );
 }
+
+#[test]
+fn goal_test_runs_the_same_runtime_as_goal_run() {
+    let dir = root().join("tests/fixtures/runtime/unified");
+    let run = goal(&["run", dir.join("mover.mas2g").to_str().expect("utf-8")]);
+    let test = goal(&["test", dir.join("mover.test2g").to_str().expect("utf-8")]);
+    let why = "environment action move(a) by an agent without an entity";
+    let run_err = text(&run.stderr);
+    assert_eq!(run.status.code(), Some(4), "{run_err}");
+    assert!(run_err.contains(why), "{run_err}");
+    // The test sees the same fatal error (it used to drop the action silently and pass).
+    let out = text(&test.stdout);
+    assert_eq!(test.status.code(), Some(1), "{out}");
+    assert!(out.contains("FAILED") && out.contains(why), "{out}");
+}

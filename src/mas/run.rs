@@ -13,10 +13,10 @@ use crate::agent::{
     Agent, AgentConfig, Directory, Event, Message, PerceptType, PerceptTypes, Program,
     RuntimeError, StopReason, TraceLevel,
 };
-use crate::env::Environment;
 use crate::bw4t::Bw4t;
 use crate::diag::Diagnostic;
 use crate::env::thread::{EnvHandle, EnvInfo, Mode};
+use crate::env::Environment;
 use crate::env::{ActionResult, InitParams};
 use crate::term::{Style, Term};
 use std::collections::BTreeMap;
@@ -575,13 +575,19 @@ impl<'a> Setup<'a> {
                             sites.push(at.next().unwrap_or_default());
                         }
                         None => {
+                            // GOAL: an `@env` action of an agent not connected to an
+                            // environment is fatal (in `goal test` as in `goal run`).
                             let msg =
                                 format!("environment action {a} by an agent without an entity");
                             if let Some(t) = trace.as_mut() {
                                 t.warning(round, tick, &s.name, &msg);
                             }
+                            let mut e = at.next().unwrap_or_default();
+                            e.message = msg;
+                            obs.warning(&format!("agent {} stopped: {e}", s.name));
                             s.stats.stopped = true;
-                            s.stats.error = Some(msg);
+                            s.stats.error = Some(e.to_string());
+                            self.pool.halt(i, e);
                             break;
                         }
                     }

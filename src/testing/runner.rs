@@ -225,7 +225,9 @@ impl Observer for Tests<'_, '_> {
         }
     }
     fn done(&self) -> bool {
-        self.controllers.values().all(|(_, c)| c.outcome().is_some())
+        self.controllers
+            .values()
+            .all(|(_, c)| c.outcome().is_some())
     }
     fn ended(&mut self, i: usize, agent: &mut Agent, end: EndReason) {
         let reason = match end {
