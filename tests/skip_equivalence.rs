@@ -171,3 +171,10 @@ fn an_agent_polling_the_clock_is_not_waiting() {
         "{trace}"
     );
 }
+
+#[test]
+fn an_agent_rolling_dice_is_not_waiting() {
+    let (s, trace) = same_both_ways(&skip_fixture("dice.goal"), 1_000).expect("loads");
+    assert_eq!(s.end, EndReason::AllStopped, "{trace}");
+    assert!(trace.contains("\"text\":\"six\""), "{trace}");
+}
