@@ -367,3 +367,14 @@ fn goal_test_runs_the_same_runtime_as_goal_run() {
     assert_eq!(test.status.code(), Some(1), "{out}");
     assert!(out.contains("FAILED") && out.contains(why), "{out}");
 }
+
+#[test]
+fn a_cycle_sending_more_than_its_quota_is_a_runtime_error() {
+    let o = goal(&["run", &fixture("shouter.goal"), "--max-sent", "100"]);
+    let err = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(4), "{err}");
+    assert!(
+        err.contains("shouter.goal:4: the cycle sent more than 100 messages"),
+        "{err}"
+    );
+}

@@ -77,6 +77,8 @@ pub struct AgentConfig {
     pub cycle_time: Option<Duration>,
     /// Most facts the belief base may hold; an update going beyond is a runtime error.
     pub max_beliefs: usize,
+    /// Most messages one cycle may send; sending more is a runtime error.
+    pub max_sent: usize,
 }
 
 /// Default of [`AgentConfig::cycle_time`].
@@ -96,6 +98,7 @@ impl Default for AgentConfig {
             trace: TraceLevel::Rules,
             cycle_time: None,
             max_beliefs: DEFAULT_MAX_BELIEFS,
+            max_sent: usize::MAX,
         }
     }
 }
@@ -113,8 +116,9 @@ pub struct Core {
     /// Wall time one cycle may take, and when the running cycle must end.
     pub cycle_time: Option<Duration>,
     pub deadline: Option<Instant>,
-    /// Most facts the belief base may hold.
+    /// Most facts the belief base may hold, and most messages one cycle may send.
     pub max_beliefs: usize,
+    pub max_sent: usize,
     /// Output of Prolog write/format built-ins.
     pub kr_out: String,
     /// A test controller's observer of module entry/exit and actions.
@@ -152,8 +156,15 @@ impl Core {
         Ok(())
     }
 
-    /// Checks the belief quota: an error when the belief base holds too many facts.
-    pub fn check_beliefs(&self) -> Result<(), Fault> {
+    /// Checks the size quotas: an error when the belief base holds too many facts or the
+    /// cycle sent too many messages.
+    pub fn check_sizes(&self) -> Result<(), Fault> {
+        if self.out.messages.len() > self.max_sent {
+            return Err(Fault::new(format!(
+                "the cycle sent more than {} messages, the quota (--max-sent)",
+                self.max_sent
+            )));
+        }
         if self.ms.beliefs.len() > self.max_beliefs {
             return Err(Fault::new(format!(
                 "the belief base holds more than {} facts, the quota (--max-beliefs)",
@@ -230,6 +241,7 @@ impl Agent {
                 cycle_time: config.cycle_time,
                 deadline: None,
                 max_beliefs: config.max_beliefs,
+                max_sent: config.max_sent,
                 kr_out: String::new(),
                 watcher: None,
                 unsettled: false,

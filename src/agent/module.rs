@@ -179,7 +179,7 @@ impl Core {
         loop {
             steps += 1;
             // The clock is read every 64 steps only: a step is cheap, reading the clock not.
-            if steps % 64 == 0 {
+            if steps.is_multiple_of(64) {
                 self.check_deadline()
                     .map_err(|e| self.error(prog, running_rule(prog, stack), e))?;
             }
@@ -349,7 +349,7 @@ impl Core {
                             let sent = self.out.env_actions.len();
                             let outcome = self
                                 .perform(prog, act, &s)
-                                .and_then(|o| self.check_beliefs().map(|_| o))
+                                .and_then(|o| self.check_sizes().map(|_| o))
                                 .map_err(|e| self.error(prog, loc, e))?;
                             for _ in sent..self.out.env_actions.len() {
                                 let at = self.error(prog, loc, Fault::new(""));

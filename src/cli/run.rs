@@ -58,6 +58,9 @@ pub struct Args {
     /// Most messages waiting for an agent in one round; more are dropped (and reported).
     #[arg(long, default_value_t = goal::mas::run::DEFAULT_MAX_MAILBOX as u64, value_parser = limits::positive)]
     pub max_mailbox: u64,
+    /// Most messages an agent may send in one cycle; more stops that agent with an error.
+    #[arg(long, default_value_t = goal::mas::run::DEFAULT_MAX_MAILBOX as u64, value_parser = limits::positive)]
+    pub max_sent: u64,
     /// Stop the run when the process uses more than this many MiB of memory.
     #[arg(long, default_value_t = goal::mas::run::DEFAULT_MAX_MEMORY >> 20, value_parser = limits::positive)]
     pub max_memory: u64,
@@ -184,6 +187,7 @@ fn options(args: &Args, sys: &MasSystem, stop: &Arc<AtomicUsize>) -> RunOptions 
         cycle_time: Some(time_limit.map_or(cycle_time, |t| t.min(cycle_time))),
         max_beliefs: usize::try_from(args.max_beliefs).unwrap_or(usize::MAX),
         max_mailbox: usize::try_from(args.max_mailbox).unwrap_or(usize::MAX),
+        max_sent: usize::try_from(args.max_sent).unwrap_or(usize::MAX),
         ..RunOptions::default()
     };
     if let Some(w) = args.workers {

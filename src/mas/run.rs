@@ -59,6 +59,8 @@ pub struct RunOptions {
     pub max_beliefs: usize,
     /// Most messages waiting for an agent in one round; more are dropped and reported.
     pub max_mailbox: usize,
+    /// Most messages one agent may send in one cycle (more: runtime error of that agent).
+    pub max_sent: usize,
 }
 
 /// Default of [`RunOptions::max_memory`]: 4 GiB.
@@ -85,6 +87,7 @@ impl Default for RunOptions {
             cycle_time: Some(crate::agent::DEFAULT_CYCLE_TIME),
             max_beliefs: crate::agent::DEFAULT_MAX_BELIEFS,
             max_mailbox: DEFAULT_MAX_MAILBOX,
+            max_sent: DEFAULT_MAX_MAILBOX,
         }
     }
 }
@@ -200,6 +203,14 @@ fn mark(queue: &mut Vec<usize>, slot: &mut Slot, i: usize) {
         slot.queued = true;
         queue.push(i);
     }
+}
+
+/// A round's environment actions (entity, action) in agent-name order, with the agent that
+/// performed each one and where in its program.
+struct Acted<'r> {
+    actions: &'r [(String, Term)],
+    actors: &'r [usize],
+    sites: &'r mut [RuntimeError],
 }
 
 struct Setup<'a> {
@@ -363,6 +374,7 @@ impl<'a> Setup<'a> {
                 trace: level,
                 cycle_time: opts.cycle_time,
                 max_beliefs: opts.max_beliefs,
+                max_sent: opts.max_sent,
                 ..AgentConfig::default()
             };
             let agent = obs.agent(i, &l.name, prog, &config);
@@ -652,26 +664,13 @@ impl<'a> Setup<'a> {
                 Some(_) if env_finished => tick += 1,
                 Some(h) => match h.round(actions.clone()) {
                     Ok(reply) => {
-                        if let Some(t) = trace.as_mut() {
-                            for ((k, (entity, result)), (_, a)) in
-                                reply.results.iter().enumerate().zip(&actions)
-                            {
-                                let agent = &self.slots[actors[k]].name;
-                                t.action(round, tick, agent, entity, &a.to_string(), result);
-                            }
-                        }
-                        for (k, (_, result)) in reply.results.iter().enumerate() {
-                            if let ActionResult::Failed(m) = result {
-                                let i = actors[k];
-                                obs.action_failed(&self.slots[i].name, &actions[k].1, m);
-                                let mut e = std::mem::take(&mut sites[k]);
-                                e.message =
-                                    format!("environment action {} failed: {m}", actions[k].1);
-                                if self.halt(i, e, round, tick, trace.as_mut(), obs) {
-                                    alive -= 1;
-                                }
-                            }
-                        }
+                        let acted = Acted {
+                            actions: &actions,
+                            actors: &actors,
+                            sites: &mut sites,
+                        };
+                        let when = (round, tick);
+                        alive -= self.results(acted, &reply.results, when, trace.as_mut(), obs);
                         tick = reply.tick;
                         finished = reply.finished;
                         self.deliver_percepts(reply.percepts);
@@ -748,6 +747,41 @@ impl<'a> Setup<'a> {
             None => None,
         };
         (summary, err)
+    }
+
+    /// Traces the results of a round's environment actions and stops each agent whose
+    /// action was refused (GOAL treats that as fatal); returns how many agents stopped.
+    fn results(
+        &mut self,
+        acted: Acted<'_>,
+        results: &[(String, ActionResult)],
+        (round, tick): (u64, u64),
+        mut trace: Option<&mut TraceWriter>,
+        obs: &mut dyn Observer,
+    ) -> usize {
+        let mut stopped = 0;
+        for (k, ((entity, result), (_, a))) in results.iter().zip(acted.actions).enumerate() {
+            let i = acted.actors[k];
+            if let Some(t) = trace.as_deref_mut() {
+                t.action(
+                    round,
+                    tick,
+                    &self.slots[i].name,
+                    entity,
+                    &a.to_string(),
+                    result,
+                );
+            }
+            if let ActionResult::Failed(m) = result {
+                obs.action_failed(&self.slots[i].name, a, m);
+                let mut e = std::mem::take(&mut acted.sites[k]);
+                e.message = format!("environment action {a} failed: {m}");
+                if self.halt(i, e, round, tick, trace.as_deref_mut(), obs) {
+                    stopped += 1;
+                }
+            }
+        }
+        stopped
     }
 
     /// The steered agents that must be stepped this round (queued for it).
