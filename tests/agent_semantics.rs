@@ -752,3 +752,19 @@ fn bel_conjunctions_with_negation_keep_prolog_answers_and_order() {
     );
     assert_eq!(step(&mut a, &["tick"], &[]).printed, ["4/c", "cut(4)"]);
 }
+
+#[test]
+fn a_cycle_that_did_nothing_leaves_the_agent_waiting_and_the_next_step_is_a_no_op() {
+    let mut a = agent(
+        "init module { beliefs { n(0). } }
+         main module { program { if bel(n(1)) then print(one). } }",
+    );
+    let first = a.step(&[], &[]);
+    assert!(first.waiting && !first.skipped);
+    let second = a.step(&[], &[]);
+    assert!(second.waiting && second.skipped);
+    assert_eq!(a.cycles(), 1, "the no-op step runs no cycle");
+    // Printing is an action: an agent that printed is not waiting.
+    let mut p = agent("main module { program [order=linearall] { if true then print(x). } }");
+    assert!(!p.step(&[], &[]).waiting);
+}

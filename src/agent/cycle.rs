@@ -200,6 +200,8 @@ pub struct Agent {
     acted_last: bool,
     /// The last cycle left the agent waiting for new input.
     waiting: bool,
+    /// [`Agent::chance`] when main started in the current cycle.
+    chance_before_main: u128,
     stopped: Option<StopReason>,
     /// Run by a test controller: `main` holds the current task instead of the main module.
     controlled: bool,
@@ -252,6 +254,7 @@ impl Agent {
             main_entered: false,
             acted_last: false,
             waiting: false,
+            chance_before_main: 0,
             stopped: None,
             controlled: false,
         }
@@ -357,12 +360,10 @@ impl Agent {
         }
         self.cycle += 1;
         self.core.out = CycleOutput::default();
-        self.core.unsettled = false;
         self.core.deadline = self
             .core
             .cycle_time
             .and_then(|t| Instant::now().checked_add(t));
-        let chance = self.chance();
         self.core.event(Event::CycleStart { cycle: self.cycle });
         match self.run_cycle(percepts, messages) {
             Ok(None) => {}
@@ -391,7 +392,7 @@ impl Agent {
             && out.env_actions.is_empty()
             && out.messages.is_empty()
             && out.printed.is_empty()
-            && self.chance() == chance;
+            && self.chance() == self.chance_before_main;
         self.core.out.waiting = self.waiting;
         std::mem::take(&mut self.core.out)
     }
@@ -458,6 +459,10 @@ impl Agent {
                 self.run_once(&prog, event)?;
             }
         }
+        // Only what main does decides whether the agent is waiting: init and event ran on
+        // this cycle's input, and main's last pass saw their effects.
+        self.core.unsettled = false;
+        self.chance_before_main = self.chance();
         let core = &mut self.core;
         if self.controlled {
             if self.main.is_empty() {
