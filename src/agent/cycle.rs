@@ -82,7 +82,7 @@ pub struct AgentConfig {
 }
 
 /// Default of [`AgentConfig::cycle_time`].
-pub const DEFAULT_CYCLE_TIME: Duration = Duration::from_secs(2);
+pub const DEFAULT_CYCLE_TIME: Duration = Duration::from_secs(10);
 /// Default of [`AgentConfig::max_beliefs`].
 pub const DEFAULT_MAX_BELIEFS: usize = 1_000_000;
 
