@@ -5,9 +5,24 @@ use std::process::ExitCode;
 
 mod cli;
 
+/// How `goal` ends (also in docs/exit-codes.md).
+const EXIT_CODES: &str = "\
+Exit codes:
+  0    success: files clean, tests passed, the run completed or ended by itself
+  1    input errors, a failed test, a Prolog error answer, an output file not written,
+       or a failure of the environment
+  2    wrong command line (unknown flag, value out of range)
+  3    the run hit its tick, cycle or time limit before completing
+  4    an agent stopped on a runtime error (also a refused environment action)
+  5    the run exceeded its memory cap (--max-memory)
+  130  interrupted by Ctrl-C (SIGINT): the run still finishes its round and writes
+       the trace's end record and the stats
+  141  standard output was closed early (e.g. piped into head)
+  143  stopped by SIGTERM (like Ctrl-C)";
+
 /// A fast, deterministic runtime for GOAL agent programs.
 #[derive(Parser)]
-#[command(name = "goal", version, about)]
+#[command(name = "goal", version, about, after_help = EXIT_CODES)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -28,6 +43,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    cli::exit::quiet_on_broken_pipe();
     let cli = Cli::parse();
     match cli.command {
         Command::Check(args) => cli::check::main(args),

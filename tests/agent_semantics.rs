@@ -829,3 +829,19 @@ fn models_are_only_kept_by_programs_that_query_them() {
     assert!(with.mental_state().models.enabled);
     assert_eq!(printed_after(&mut with, &[msg("b", "q")])[0], "q");
 }
+
+#[test]
+fn a_cycle_that_did_nothing_leaves_the_agent_waiting_and_the_next_step_is_a_no_op() {
+    let mut a = agent(
+        "init module { beliefs { n(0). } }
+         main module { program { if bel(n(1)) then print(one). } }",
+    );
+    let first = a.step(&[], &[]);
+    assert!(first.waiting && !first.skipped);
+    let second = a.step(&[], &[]);
+    assert!(second.waiting && second.skipped);
+    assert_eq!(a.cycles(), 1, "the no-op step runs no cycle");
+    // Printing is an action: an agent that printed is not waiting.
+    let mut p = agent("main module { program [order=linearall] { if true then print(x). } }");
+    assert!(!p.step(&[], &[]).waiting);
+}

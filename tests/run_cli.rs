@@ -34,7 +34,8 @@ fn no_arguments_runs_the_built_in_team_from_an_empty_directory() {
     let dir = temp_dir("default");
     let out = goal(&dir, &["--max-ticks", "40", "--stats", "s.json"]);
     let err = text(&out.stderr);
-    assert!(out.status.success(), "{err}");
+    // The tick limit ends the run before the sequence is delivered: exit code 3.
+    assert_eq!(out.status.code(), Some(3), "{err}");
     assert_eq!(text(&out.stdout), "", "the default robots print nothing");
     assert!(err.contains("result"), "{err}");
     assert!(err.contains("Bot1") && err.contains("Bot3"), "{err}");
@@ -94,7 +95,7 @@ fn same_seed_same_trace_file_and_workers_do_not_matter() {
                 &file,
             ],
         );
-        assert!(out.status.success(), "{}", text(&out.stderr));
+        assert_eq!(out.status.code(), Some(3), "{}", text(&out.stderr));
         traces.push(std::fs::read(dir.join(&file)).expect("trace written"));
     }
     assert!(traces[0].len() > 1000);
@@ -111,7 +112,11 @@ fn same_seed_same_trace_file_and_workers_do_not_matter() {
 fn a_failing_agent_is_in_the_summary() {
     let mas = root().join("tests/fixtures/mas/failing.mas2g");
     let out = goal(&root(), &[mas.to_str().expect("utf-8 path")]);
-    assert!(out.status.success());
+    assert_eq!(
+        out.status.code(),
+        Some(4),
+        "an agent stopped on a runtime error"
+    );
     let err = text(&out.stderr);
     assert!(
         err.lines()
@@ -154,7 +159,7 @@ fn map_and_robots_options_replace_the_defaults() {
             "s.json",
         ],
     );
-    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert_eq!(out.status.code(), Some(3), "{}", text(&out.stderr));
     let stats: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("s.json")).expect("stats"))
             .expect("JSON");

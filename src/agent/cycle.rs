@@ -3,7 +3,7 @@
 //! it performs a real action) and returns what the agent did. No I/O, no threads.
 
 use super::directory::Directory;
-use super::error::RuntimeError;
+use super::error::{Fault, RuntimeError};
 use super::kr_bridge::Limits;
 use super::mailbox::Message;
 use super::mental_state::MentalState;
@@ -16,6 +16,7 @@ use crate::term::Term;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 /// Why an agent stopped.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -41,6 +42,15 @@ pub struct CycleOutput {
     pub stopped: Option<StopReason>,
     /// Real actions performed (counted at every trace level).
     pub actions: u64,
+    /// Where each environment action was performed (file, line, rule; the message is empty):
+    /// the location of the error when the environment refuses the action.
+    pub env_sites: Vec<RuntimeError>,
+    /// The agent can do nothing more until new input (percepts or messages) arrives: another
+    /// cycle without input would provably repeat the same nothing. Such a cycle is not run
+    /// (see [`CycleOutput::skipped`]), so stepping a waiting agent or not is the same.
+    pub waiting: bool,
+    /// The step ran no cycle: the agent was waiting and got nothing new.
+    pub skipped: bool,
 }
 
 /// How to create an agent.
@@ -62,7 +72,19 @@ pub struct AgentConfig {
     pub max_steps: u64,
     /// How much to trace.
     pub trace: TraceLevel,
+    /// Wall time one cycle may take; a longer cycle is cut with a runtime error (`None`: no
+    /// limit; runs use [`DEFAULT_CYCLE_TIME`]).
+    pub cycle_time: Option<Duration>,
+    /// Most facts the belief base may hold; an update going beyond is a runtime error.
+    pub max_beliefs: usize,
+    /// Most messages one cycle may send; sending more is a runtime error.
+    pub max_sent: usize,
 }
+
+/// Default of [`AgentConfig::cycle_time`].
+pub const DEFAULT_CYCLE_TIME: Duration = Duration::from_secs(10);
+/// Default of [`AgentConfig::max_beliefs`].
+pub const DEFAULT_MAX_BELIEFS: usize = 1_000_000;
 
 impl Default for AgentConfig {
     fn default() -> Self {
@@ -74,6 +96,9 @@ impl Default for AgentConfig {
             limits: Limits::default(),
             max_steps: 1_000_000,
             trace: TraceLevel::Rules,
+            cycle_time: None,
+            max_beliefs: DEFAULT_MAX_BELIEFS,
+            max_sent: usize::MAX,
         }
     }
 }
@@ -88,10 +113,19 @@ pub struct Core {
     pub known: Arc<Directory>,
     pub level: TraceLevel,
     pub max_steps: u64,
+    /// Wall time one cycle may take, and when the running cycle must end.
+    pub cycle_time: Option<Duration>,
+    pub deadline: Option<Instant>,
+    /// Most facts the belief base may hold, and most messages one cycle may send.
+    pub max_beliefs: usize,
+    pub max_sent: usize,
     /// Output of Prolog write/format built-ins.
     pub kr_out: String,
     /// A test controller's observer of module entry/exit and actions.
     pub watcher: Option<Box<dyn Watcher>>,
+    /// Set when the cycle changed the state or drew on chance without performing a real
+    /// action (e.g. a module entered with `focus=select`): the agent is then not waiting.
+    pub unsettled: bool,
 }
 
 impl Core {
@@ -108,6 +142,36 @@ impl Core {
         if self.level >= need {
             self.out.events.push(e);
         }
+    }
+
+    /// Checks the cycle's time quota: an error when the cycle ran too long.
+    pub fn check_deadline(&self) -> Result<(), Fault> {
+        if self.deadline.is_some_and(|d| Instant::now() >= d) {
+            let t = self.cycle_time.unwrap_or_default();
+            return Err(Fault::new(format!(
+                "the cycle took longer than its time quota of {} (--cycle-time)",
+                show_duration(t)
+            )));
+        }
+        Ok(())
+    }
+
+    /// Checks the size quotas: an error when the belief base holds too many facts or the
+    /// cycle sent too many messages.
+    pub fn check_sizes(&self) -> Result<(), Fault> {
+        if self.out.messages.len() > self.max_sent {
+            return Err(Fault::new(format!(
+                "the cycle sent more than {} messages, the quota (--max-sent)",
+                self.max_sent
+            )));
+        }
+        if self.ms.beliefs.len() > self.max_beliefs {
+            return Err(Fault::new(format!(
+                "the belief base holds more than {} facts, the quota (--max-beliefs)",
+                self.max_beliefs
+            )));
+        }
+        Ok(())
     }
 
     /// Records several events.
@@ -134,6 +198,10 @@ pub struct Agent {
     main: Vec<Frame>,
     main_entered: bool,
     acted_last: bool,
+    /// The last cycle left the agent waiting for new input.
+    waiting: bool,
+    /// [`Agent::chance`] when main started in the current cycle.
+    chance_before_main: u128,
     stopped: Option<StopReason>,
     /// Run by a test controller: `main` holds the current task instead of the main module.
     controlled: bool,
@@ -173,14 +241,21 @@ impl Agent {
                 known,
                 level: config.trace,
                 max_steps: config.max_steps,
+                cycle_time: config.cycle_time,
+                deadline: None,
+                max_beliefs: config.max_beliefs,
+                max_sent: config.max_sent,
                 kr_out: String::new(),
                 watcher: None,
+                unsettled: false,
             },
             types: config.percept_types,
             cycle: 0,
             main: Vec::new(),
             main_entered: false,
             acted_last: false,
+            waiting: false,
+            chance_before_main: 0,
             stopped: None,
             controlled: false,
         }
@@ -230,6 +305,7 @@ impl Agent {
             exiting: false,
         }));
         self.acted_last = true;
+        self.waiting = false;
     }
 
     /// True while a task started with [`Agent::start_task`] is unfinished.
@@ -247,6 +323,20 @@ impl Agent {
             });
         }
         self.main.clear();
+        self.waiting = false;
+    }
+
+    /// True when the agent can do nothing more until new input arrives.
+    pub fn waiting(&self) -> bool {
+        self.waiting
+    }
+
+    /// Sets the simulated time (seconds since the start of the run) that `get_time/1`
+    /// answers; `None`: wall-clock time.
+    pub fn set_clock(&mut self, now: Option<f64>) {
+        if let Ok(mut e) = self.core.ms.engine.try_borrow_mut() {
+            e.clock.now = now;
+        }
     }
 
     /// Installs (or removes, with `None`) the watcher; returns the previous one.
@@ -262,8 +352,19 @@ impl Agent {
                 ..CycleOutput::default()
             };
         }
+        if self.waiting && percepts.is_empty() && messages.is_empty() {
+            return CycleOutput {
+                waiting: true,
+                skipped: true,
+                ..CycleOutput::default()
+            };
+        }
         self.cycle += 1;
         self.core.out = CycleOutput::default();
+        self.core.deadline = self
+            .core
+            .cycle_time
+            .and_then(|t| Instant::now().checked_add(t));
         self.core.event(Event::CycleStart { cycle: self.cycle });
         match self.run_cycle(percepts, messages) {
             Ok(None) => {}
@@ -284,7 +385,32 @@ impl Agent {
                 .printed
                 .extend(text.lines().map(str::to_string));
         }
+        let out = &self.core.out;
+        self.waiting = self.stopped.is_none()
+            && !self.acted_last
+            && !self.core.unsettled
+            && out.actions == 0
+            && out.env_actions.is_empty()
+            && out.messages.is_empty()
+            && out.printed.is_empty()
+            && self.chance() == self.chance_before_main;
+        self.core.out.waiting = self.waiting;
         std::mem::take(&mut self.core.out)
+    }
+
+    /// Stops the agent from outside with a runtime error (e.g. the environment refused one
+    /// of its actions, which GOAL treats as fatal for the agent).
+    pub fn halt(&mut self, e: RuntimeError) {
+        if self.stopped.is_none() {
+            self.stopped = Some(StopReason::Error(e));
+            self.main.clear();
+            self.waiting = false;
+        }
+    }
+
+    /// Changes whenever the agent drew a random number or read the clock in a query.
+    fn chance(&self) -> u128 {
+        self.core.ms.engine.try_borrow().map_or(0, |e| e.chance())
     }
 
     fn stop(&mut self, reason: StopReason) {
@@ -337,6 +463,10 @@ impl Agent {
                 self.run_once(&prog, event)?;
             }
         }
+        // Only what main does decides whether the agent is waiting: init and event ran on
+        // this cycle's input, and main's last pass saw their effects.
+        self.core.unsettled = false;
+        self.chance_before_main = self.chance();
         let core = &mut self.core;
         if self.controlled {
             if self.main.is_empty() {
@@ -381,4 +511,9 @@ impl Agent {
         core.run(prog, &mut stack, false)?;
         Ok(())
     }
+}
+
+/// A duration as seconds, e.g. `2s` or `0.5s`.
+pub fn show_duration(d: Duration) -> String {
+    format!("{}s", d.as_secs_f64())
 }

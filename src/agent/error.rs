@@ -3,7 +3,7 @@
 use std::fmt;
 
 /// A fatal runtime error of one agent.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct RuntimeError {
     /// Program file name.
     pub file: String,

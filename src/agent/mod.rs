@@ -42,7 +42,10 @@ pub mod rule;
 pub mod trace;
 pub mod watch;
 
-pub use cycle::{Agent, AgentConfig, CycleOutput, StopReason};
+pub use cycle::{
+    show_duration, Agent, AgentConfig, CycleOutput, StopReason, DEFAULT_CYCLE_TIME,
+    DEFAULT_MAX_BELIEFS,
+};
 pub use directory::Directory;
 pub use error::RuntimeError;
 pub use mailbox::Message;

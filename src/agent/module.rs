@@ -112,6 +112,8 @@ impl Core {
                 true
             }
             (Focus::Select, Some((_, ans, _))) => {
+                // The goal picked may differ next time: not a settled state.
+                self.unsettled |= ans.goals.len() > 1;
                 let mut base = GoalBase::default();
                 if !ans.goals.is_empty() {
                     let i = self.rng.gen_range(0..ans.goals.len());
@@ -136,9 +138,11 @@ impl Core {
         });
         self.watch(Observed::ModuleEntered(&m.name));
         let mut ev = Vec::new();
+        let before = self.ms.beliefs.len();
         for b in &m.beliefs {
             self.ms.update(b, true, &mut ev)?;
         }
+        self.unsettled |= self.ms.beliefs.len() != before;
         self.changes(ev);
         for g in &m.goals {
             let g = subst.apply(g);
@@ -174,6 +178,11 @@ impl Core {
         let mut steps: u64 = 0;
         loop {
             steps += 1;
+            // The clock is read every 64 steps only: a step is cheap, reading the clock not.
+            if steps.is_multiple_of(64) {
+                self.check_deadline()
+                    .map_err(|e| self.error(prog, running_rule(prog, stack), e))?;
+            }
             if steps > self.max_steps {
                 return Err(self.error(
                     prog,
@@ -337,10 +346,16 @@ impl Core {
                         }
                         act => {
                             let s = c.answer.subst.clone();
-                            match self
+                            let sent = self.out.env_actions.len();
+                            let outcome = self
                                 .perform(prog, act, &s)
-                                .map_err(|e| self.error(prog, loc, e))?
-                            {
+                                .and_then(|o| self.check_sizes().map(|_| o))
+                                .map_err(|e| self.error(prog, loc, e))?;
+                            for _ in sent..self.out.env_actions.len() {
+                                let at = self.error(prog, loc, Fault::new(""));
+                                self.out.env_sites.push(at);
+                            }
+                            match outcome {
                                 Outcome::NotRun => {
                                     if let Some(Frame::Combo(c)) = stack.last_mut() {
                                         c.next = usize::MAX;
@@ -415,6 +430,17 @@ impl Core {
             binding: f.binding,
         }
     }
+}
+
+/// The rule being run on top of `stack` (block, rule, line), for locating an error raised
+/// between steps.
+fn running_rule(prog: &Program, stack: &[Frame]) -> Option<(usize, usize, usize)> {
+    let (b, r) = stack.iter().rev().find_map(|f| match f {
+        Frame::Rule(r) => Some((r.block, r.rule)),
+        Frame::Combo(c) => Some((c.block, c.rule)),
+        Frame::Module(_) => None,
+    })?;
+    Some((b, r, prog.blocks.get(b)?.rules.get(r)?.line))
 }
 
 /// Passes a child's "performed a real action" result to its parent frame.

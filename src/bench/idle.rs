@@ -34,7 +34,7 @@ pub fn run(params: &Params, workers: usize) -> Result<Report, String> {
     let create = t0.elapsed();
     let t1 = Instant::now();
     let jobs: Vec<Job> = (0..n).map(|i| (i, Vec::new(), Vec::new())).collect();
-    let outs = pool.round(jobs).map_err(|e| e.0)?;
+    let outs = pool.round(jobs, None).map_err(|e| e.0)?;
     let run = t1.elapsed();
     let after = rss::current_kib();
     let mut failure = None;

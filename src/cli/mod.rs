@@ -2,6 +2,8 @@
 
 pub mod bench;
 pub mod check;
+pub mod exit;
+pub mod limits;
 pub mod prolog;
 pub mod run;
 pub mod test;

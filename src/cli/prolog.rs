@@ -120,7 +120,8 @@ fn load_files(files: &[PathBuf]) -> Result<engine::Kb, ()> {
     })
 }
 
-/// Reads, runs and prints one query. `Err` when the query text could not be read.
+/// Reads, runs and prints one query. `Err` when the query text could not be read or the
+/// query raised an error.
 fn run_query(kb: &engine::Kb, text: &str, file: &str, out: &mut impl Write) -> Result<(), ()> {
     let text = text.trim();
     let text = text.strip_suffix('.').unwrap_or(text);
@@ -145,6 +146,8 @@ fn run_query(kb: &engine::Kb, text: &str, file: &str, out: &mut impl Write) -> R
     match error {
         Some(e) => {
             let _ = writeln!(out, "{}", error_line(&e));
+            // An error answer is a failure of the query: the exit code says so.
+            return Err(());
         }
         None if answers.is_empty() => {
             let _ = writeln!(out, "false");

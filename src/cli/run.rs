@@ -1,7 +1,9 @@
 //! `goal run [MAS|AGENT]`: run a multi-agent system, a single agent, or the default BW4T team.
 //! Standard output carries only what agents print; progress, warnings and the summary go to
-//! standard error.
+//! standard error. The exit code tells how the run ended (see `goal --help`).
 
+use super::exit;
+use super::limits;
 use goal::agent::Message;
 use goal::mas::run::{Observer, Progress, RunOptions};
 use goal::mas::trace::TraceWriter;
@@ -9,6 +11,8 @@ use goal::mas::{default_team, summary, system, vocabulary, MasSystem, Problem};
 use std::io::{BufWriter, IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Arc;
 
 /// Arguments of `goal run`.
 #[derive(clap::Args)]
@@ -24,14 +28,14 @@ pub struct Args {
     /// Number of robots in the environment.
     #[arg(long)]
     pub robots: Option<usize>,
-    /// Stop after this many environment ticks.
-    #[arg(long, default_value_t = 10_000)]
+    /// Stop after this many environment ticks (at least 1).
+    #[arg(long, default_value_t = 10_000, value_parser = limits::positive)]
     pub max_ticks: u64,
-    /// Stop a single agent (`.goal`) after this many cycles.
-    #[arg(long, default_value_t = 10_000)]
+    /// Stop a system without environment after this many cycles (rounds; at least 1).
+    #[arg(long, default_value_t = 10_000, value_parser = limits::positive)]
     pub max_cycles: u64,
-    /// Worker threads for the agents (default: number of cores).
-    #[arg(long)]
+    /// Worker threads for the agents (1 to 1024; default: number of cores).
+    #[arg(long, value_parser = limits::workers)]
     pub workers: Option<usize>,
     /// Write the run as JSON lines to this file (see docs/trace-format.md).
     #[arg(long)]
@@ -39,15 +43,33 @@ pub struct Args {
     /// Write the summary as JSON to this file.
     #[arg(long)]
     pub stats: Option<PathBuf>,
-    /// Pace the rounds to this many ticks per second (for watching).
-    #[arg(long)]
+    /// Pace the rounds to this many ticks per second (for watching; 0.001 to 1000000).
+    #[arg(long, value_parser = limits::rate)]
     pub realtime: Option<f64>,
     /// Stop after this many seconds of wall time (the trace then depends on timing).
-    #[arg(long)]
+    #[arg(long, value_parser = limits::seconds)]
     pub time_limit: Option<f64>,
+    /// Seconds one cycle of an agent may take; a longer cycle stops that agent with an error.
+    #[arg(long, default_value_t = goal::agent::DEFAULT_CYCLE_TIME.as_secs_f64(), value_parser = limits::seconds)]
+    pub cycle_time: f64,
+    /// Most facts an agent's belief base may hold; more stops that agent with an error.
+    #[arg(long, default_value_t = goal::agent::DEFAULT_MAX_BELIEFS as u64, value_parser = limits::positive)]
+    pub max_beliefs: u64,
+    /// Most messages waiting for an agent in one round; more are dropped (and reported).
+    #[arg(long, default_value_t = goal::mas::run::DEFAULT_MAX_MAILBOX as u64, value_parser = limits::positive)]
+    pub max_mailbox: u64,
+    /// Most messages an agent may send in one cycle; more stops that agent with an error.
+    #[arg(long, default_value_t = goal::mas::run::DEFAULT_MAX_MAILBOX as u64, value_parser = limits::positive)]
+    pub max_sent: u64,
+    /// Stop the run when the process uses more than this many MiB of memory.
+    #[arg(long, default_value_t = goal::mas::run::DEFAULT_MAX_MEMORY >> 20, value_parser = limits::positive)]
+    pub max_memory: u64,
     /// Step every agent every tick, even when it has nothing new (slower; same trace).
     #[arg(long)]
     pub no_skip: bool,
+    /// Start each line an agent prints with the agent's name (`Bot1: ...`).
+    #[arg(long)]
+    pub prefix: bool,
     /// Show every message (logical form, speech act, English) and failed action on stderr.
     #[arg(long)]
     pub verbose: bool,
@@ -56,8 +78,11 @@ pub struct Args {
 struct Console {
     verbose: bool,
     progress: bool,
+    prefix: bool,
     out: std::io::StdoutLock<'static>,
     shown: bool,
+    /// Raised when standard output is a closed pipe: the run stops after the round.
+    stop: Arc<AtomicUsize>,
 }
 
 impl Console {
@@ -70,15 +95,24 @@ impl Console {
 }
 
 impl Observer for Console {
-    fn printed(&mut self, _agent: &str, line: &str) {
-        let _ = writeln!(self.out, "{line}");
+    fn printed(&mut self, agent: &str, line: &str) {
+        let line = limits::escape_controls(line);
+        let written = if self.prefix {
+            writeln!(self.out, "{agent}: {line}")
+        } else {
+            writeln!(self.out, "{line}")
+        };
+        if written.is_err_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe) {
+            self.stop
+                .store(usize::from(exit::BROKEN_PIPE - 128), Ordering::Relaxed);
+        }
     }
     fn message(&mut self, round: u64, m: &Message, delivered: bool) {
         if self.verbose {
             self.clear();
             let r = vocabulary::read(&m.sender, &m.content);
             let english = r.english.map(|e| format!(" \"{e}\"")).unwrap_or_default();
-            let lost = if delivered { "" } else { " (unknown receiver)" };
+            let lost = if delivered { "" } else { " (not delivered)" };
             eprintln!(
                 "[{round}] {} -> {}: {} ({:?}){english}{lost}",
                 m.sender, m.receiver, r.logical_form, r.act
@@ -90,6 +124,7 @@ impl Observer for Console {
         eprintln!("warning: {text}");
     }
     fn action_failed(&mut self, agent: &str, action: &goal::term::Term, reason: &str) {
+        // Not verbose: the agent's stop (a runtime error, reported as a warning) says it.
         if self.verbose {
             self.clear();
             eprintln!("{agent}: action {action} failed: {reason}");
@@ -112,7 +147,53 @@ fn report(problems: &[Problem]) -> ExitCode {
     for p in problems {
         eprint!("{}", p.render());
     }
-    ExitCode::from(1)
+    exit::code(exit::FAILURE)
+}
+
+/// Ctrl-C and SIGTERM set `flag` to the signal's number: the run finishes its round, writes
+/// the trace's end record and the stats, and exits with 128 + the signal. A second signal
+/// ends the program at once.
+fn catch_signals(flag: &Arc<AtomicUsize>) {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    use signal_hook::flag as sig;
+    for s in [SIGINT, SIGTERM] {
+        let again = Arc::new(AtomicBool::new(false));
+        // Registered first, so it sees the flag of an earlier signal only.
+        let _ = sig::register_conditional_shutdown(s, 128 + s, again.clone());
+        let _ = sig::register(s, again);
+        let _ = sig::register_usize(s, flag.clone(), s as usize);
+    }
+}
+
+fn options(args: &Args, sys: &MasSystem, stop: &Arc<AtomicUsize>) -> RunOptions {
+    let cycle_time = std::time::Duration::from_secs_f64(args.cycle_time);
+    let time_limit = args.time_limit.map(std::time::Duration::from_secs_f64);
+    let mut opts = RunOptions {
+        seed: args.seed,
+        map: args.map.clone(),
+        robots: args.robots,
+        max_ticks: if sys.env.is_none() {
+            args.max_cycles.min(args.max_ticks)
+        } else {
+            args.max_ticks
+        },
+        realtime: args.realtime,
+        time_limit,
+        skip_idle: !args.no_skip,
+        trace_rules: args.trace.is_some(),
+        interrupt: Some(stop.clone()),
+        max_memory: Some(args.max_memory.saturating_mul(1 << 20)),
+        // A cycle never outlasts the run's time limit.
+        cycle_time: Some(time_limit.map_or(cycle_time, |t| t.min(cycle_time))),
+        max_beliefs: usize::try_from(args.max_beliefs).unwrap_or(usize::MAX),
+        max_mailbox: usize::try_from(args.max_mailbox).unwrap_or(usize::MAX),
+        max_sent: usize::try_from(args.max_sent).unwrap_or(usize::MAX),
+        ..RunOptions::default()
+    };
+    if let Some(w) = args.workers {
+        opts.workers = w;
+    }
+    opts
 }
 
 /// Runs `goal run`.
@@ -139,27 +220,8 @@ pub fn main(args: Args) -> ExitCode {
             eprintln!("{}", env.describe());
         }
     }
-    let mut opts = RunOptions {
-        seed: args.seed,
-        map: args.map.clone(),
-        robots: args.robots,
-        max_ticks: if sys.env.is_none() {
-            args.max_cycles.min(args.max_ticks)
-        } else {
-            args.max_ticks
-        },
-        realtime: args.realtime,
-        time_limit: args
-            .time_limit
-            .filter(|t| t.is_finite() && *t > 0.0)
-            .map(std::time::Duration::from_secs_f64),
-        skip_idle: !args.no_skip,
-        trace_rules: args.trace.is_some(),
-        ..RunOptions::default()
-    };
-    if let Some(w) = args.workers {
-        opts.workers = w.max(1);
-    }
+    let stop = Arc::new(AtomicUsize::new(0));
+    let opts = options(&args, &sys, &stop);
     if sys.env.is_none() && (args.map.is_some() || args.robots.is_some()) {
         eprintln!("warning: --map and --robots need an environment; ignored");
     }
@@ -168,16 +230,19 @@ pub fn main(args: Args) -> ExitCode {
             Ok(f) => Some(TraceWriter::new(Box::new(BufWriter::new(f)))),
             Err(e) => {
                 eprintln!("error: cannot create trace file {}: {e}", p.display());
-                return ExitCode::from(1);
+                return exit::code(exit::FAILURE);
             }
         },
         None => None,
     };
+    catch_signals(&stop);
     let mut console = Console {
         verbose: args.verbose,
         progress: std::io::stderr().is_terminal() && sys.env.is_some(),
+        prefix: args.prefix,
         out: std::io::stdout().lock(),
         shown: false,
+        stop: stop.clone(),
     };
     let result = goal::mas::run(&sys, &opts, trace, &mut console);
     console.clear();
@@ -186,19 +251,23 @@ pub fn main(args: Args) -> ExitCode {
         Ok(r) => r,
         Err(p) => return report(&p),
     };
+    let mut files_ok = true;
     if let Some(e) = trace_err {
         eprintln!("error: writing the trace failed: {e}");
+        files_ok = false;
     }
     if let Some(p) = &args.stats {
         let text = serde_json::to_string_pretty(&summary.to_json()).unwrap_or_default();
         if let Err(e) = std::fs::write(p, text + "\n") {
             eprintln!("error: cannot write stats file {}: {e}", p.display());
+            files_ok = false;
         }
     }
     eprint!("{}", summary::table(&summary));
-    if summary.end == goal::mas::EndReason::Failure {
-        ExitCode::from(1)
-    } else {
-        ExitCode::SUCCESS
+    let signal = stop.load(Ordering::Relaxed);
+    let code = exit::of_run(&summary, signal);
+    if !files_ok && code != exit::SIGINT && code != exit::SIGTERM {
+        return exit::code(exit::FAILURE);
     }
+    exit::code(code)
 }

@@ -2,8 +2,9 @@
 //! `goal test --golden TRACE [SYSTEM]`: check a run against a golden `goal run --trace` file.
 //! Exit code 0 only when everything passed.
 
+use super::exit::{self, say};
 use goal::testing::golden::{self, GoldenOptions};
-use goal::testing::report;
+use goal::testing::report::{self, Outcome, TestReport};
 use goal::testing::runner::{run_file, TestOptions};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -24,7 +25,7 @@ pub struct Args {
     /// (default: the file named in the golden trace).
     pub files: Vec<PathBuf>,
     /// Bound on simulated time per test (environment ticks, or rounds without an environment).
-    #[arg(long)]
+    #[arg(long, value_parser = super::limits::positive)]
     pub max_ticks: Option<u64>,
     /// Run seed (replaces the MAS file's or the golden trace's).
     #[arg(long)]
@@ -81,12 +82,12 @@ fn golden_main(trace: &Path, args: &Args) -> ExitCode {
     match result {
         Ok(None) => {
             if json {
-                println!(
-                    "{}",
+                say(&format!(
+                    "{}\n",
                     serde_json::json!({"golden": trace, "status": "passed"})
-                );
+                ));
             } else {
-                println!("golden {} ... passed", trace.display());
+                say(&format!("golden {} ... passed\n", trace.display()));
             }
             ExitCode::SUCCESS
         }
@@ -96,25 +97,55 @@ fn golden_main(trace: &Path, args: &Args) -> ExitCode {
                     "golden": trace, "status": "failed", "line": d.line, "round": d.round,
                     "agent": d.agent, "expected": d.expected, "actual": d.actual,
                 });
-                println!("{v}");
+                say(&format!("{v}\n"));
             } else {
-                println!("golden {} ... FAILED", trace.display());
-                print!("{}", d.to_text());
+                say(&format!(
+                    "golden {} ... FAILED\n{}",
+                    trace.display(),
+                    d.to_text()
+                ));
             }
             ExitCode::from(1)
         }
         Err(e) => {
             if json {
-                println!(
-                    "{}",
+                say(&format!(
+                    "{}\n",
                     serde_json::json!({"golden": trace, "status": "error", "message": e})
-                );
+                ));
             } else {
                 eprintln!("error: {e}");
             }
             ExitCode::from(1)
         }
     }
+}
+
+/// Runs the tests of one file; a file whose run breaks down (a bug) gives one error report
+/// instead of ending `goal test`, so every other file is still run and reported.
+fn run_guarded(file: &Path, opts: &TestOptions) -> Vec<TestReport> {
+    let quiet = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let result = std::panic::catch_unwind(|| run_file(file, opts));
+    std::panic::set_hook(quiet);
+    result.unwrap_or_else(|payload| {
+        let why = payload
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+            .unwrap_or_default();
+        vec![TestReport {
+            file: file.display().to_string(),
+            agent: "-".into(),
+            test: "-".into(),
+            outcome: Outcome::Error {
+                message: format!("internal error while running this file (a bug): {why}"),
+            },
+            cycles: 0,
+            ticks: 0,
+            watch: Vec::new(),
+        }]
+    })
 }
 
 /// Runs `goal test`.
@@ -128,7 +159,7 @@ pub fn main(args: Args) -> ExitCode {
     }
     if files.is_empty() {
         eprintln!("error: no .test2g files given");
-        return ExitCode::from(2);
+        return exit::code(exit::USAGE);
     }
     let mut opts = TestOptions {
         seed: args.seed,
@@ -139,16 +170,16 @@ pub fn main(args: Args) -> ExitCode {
     }
     let mut all = Vec::new();
     for f in &files {
-        for r in run_file(f, &opts) {
+        for r in run_guarded(f, &opts) {
             match args.format {
-                Format::Json => println!("{}", r.to_json()),
-                Format::Text => print!("{}", r.to_text()),
+                Format::Json => say(&format!("{}\n", r.to_json())),
+                Format::Text => say(&r.to_text()),
             }
             all.push(r);
         }
     }
     if args.format == Format::Text {
-        print!("{}", report::summary(&all));
+        say(&report::summary(&all));
     }
     if all.is_empty() {
         // GOAL counts a test file without tests as passed; say so rather than pass silently.

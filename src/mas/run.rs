@@ -11,16 +11,21 @@ use super::stats::{AgentStats, Deliveries, EndReason, RunSummary};
 use super::system::{MasSystem, Problem};
 use super::trace::{AgentInfo, TraceWriter};
 use crate::agent::{
-    Agent, AgentConfig, Directory, Event, Message, PerceptType, PerceptTypes, StopReason,
-    TraceLevel,
+    Agent, AgentConfig, Directory, Event, Message, PerceptType, PerceptTypes, Program,
+    RuntimeError, StopReason, TraceLevel,
 };
 use crate::diag::Diagnostic;
 use crate::env::thread::{EnvHandle, EnvInfo, Mode};
 use crate::env::{ActionResult, InitParams};
 use crate::term::{Style, Term};
 use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
+
+/// Simulated seconds per tick: what `get_time/1` advances by per tick in lock-step runs (the
+/// BW4T server's default step delay), so runs are reproducible.
+pub const TICK_SECONDS: f64 = 0.01;
 
 /// How to run a system.
 #[derive(Clone, Debug)]
@@ -43,7 +48,26 @@ pub struct RunOptions {
     pub time_limit: Option<Duration>,
     /// Record every rule evaluation (needed for a full trace); otherwise only changes.
     pub trace_rules: bool,
+    /// Set to a signal number (non-zero) to stop the run after the round under way.
+    pub interrupt: Option<Arc<AtomicUsize>>,
+    /// Stop the run when the process's resident memory exceeds this many bytes.
+    pub max_memory: Option<u64>,
+    /// Wall time one cycle of an agent may take (a longer cycle is cut: runtime error).
+    pub cycle_time: Option<Duration>,
+    /// Most facts an agent's belief base may hold (more: runtime error of that agent).
+    pub max_beliefs: usize,
+    /// Most messages waiting for an agent in one round; more are dropped and reported.
+    pub max_mailbox: usize,
+    /// Most messages one agent may send in one cycle (more: runtime error of that agent).
+    pub max_sent: usize,
 }
+
+/// Default of [`RunOptions::max_memory`]: 4 GiB.
+pub const DEFAULT_MAX_MEMORY: u64 = 4 << 30;
+/// Default of [`RunOptions::max_mailbox`].
+pub const DEFAULT_MAX_MAILBOX: usize = 100_000;
+/// How often the resident memory is checked against the cap.
+const MEMORY_CHECK_EVERY: Duration = Duration::from_millis(20);
 
 impl Default for RunOptions {
     fn default() -> Self {
@@ -57,6 +81,12 @@ impl Default for RunOptions {
             realtime: None,
             time_limit: None,
             trace_rules: true,
+            interrupt: None,
+            max_memory: Some(DEFAULT_MAX_MEMORY),
+            cycle_time: Some(crate::agent::DEFAULT_CYCLE_TIME),
+            max_beliefs: crate::agent::DEFAULT_MAX_BELIEFS,
+            max_mailbox: DEFAULT_MAX_MAILBOX,
+            max_sent: DEFAULT_MAX_MAILBOX,
         }
     }
 }
@@ -89,6 +119,40 @@ pub trait Observer {
     /// Every agent is created and the first round is about to start (benchmarks time the
     /// creation apart from the run).
     fn started(&mut self, _agents: usize, _workers: usize) {}
+
+    // A test controller takes part in the run through the methods below (`goal test` runs
+    // on this same round driver); plain observers keep the defaults.
+
+    /// Agent `i` (`name`, running `program`): an observer may create it itself, e.g. a tested
+    /// agent running an extended program under a controller; `None`: the usual agent.
+    fn agent(
+        &mut self,
+        _i: usize,
+        _name: &str,
+        _program: &Arc<Program>,
+        _config: &AgentConfig,
+    ) -> Option<Agent> {
+        None
+    }
+    /// The agents the observer steers (by index): they are stepped whenever
+    /// [`Observer::busy`] says so, and shown to the observer before and after each step.
+    fn steers(&self) -> Vec<usize> {
+        Vec::new()
+    }
+    /// True when steered agent `i` must be stepped this round even without new input.
+    fn busy(&self, _i: usize, _agent: &Agent) -> bool {
+        false
+    }
+    /// Steered agent `i` is about to be stepped.
+    fn before_step(&mut self, _i: usize, _agent: &Agent) {}
+    /// Steered agent `i` was stepped.
+    fn after_step(&mut self, _i: usize, _agent: &mut Agent) {}
+    /// True when the observer has what it needs: the run ends ([`EndReason::Released`]).
+    fn done(&self) -> bool {
+        false
+    }
+    /// The run ended: a last look at steered agent `i`.
+    fn ended(&mut self, _i: usize, _agent: &mut Agent, _end: EndReason) {}
 }
 
 /// An observer that ignores everything.
@@ -118,7 +182,8 @@ struct Slot {
     reference: String,
     entity: Option<String>,
     stats: AgentStats,
-    acted: bool,
+    /// The agent's last cycle left it waiting for new input (see `CycleOutput::waiting`).
+    waiting: bool,
     percepts: Vec<Term>,
     inbox: Vec<Message>,
     /// In the ready queue (something new for the next round).
@@ -133,6 +198,14 @@ fn mark(queue: &mut Vec<usize>, slot: &mut Slot, i: usize) {
         slot.queued = true;
         queue.push(i);
     }
+}
+
+/// A round's environment actions (entity, action) in agent-name order, with the agent that
+/// performed each one and where in its program.
+struct Acted<'r> {
+    actions: &'r [(String, Term)],
+    actors: &'r [usize],
+    sites: &'r mut [RuntimeError],
 }
 
 struct Setup<'a> {
@@ -295,9 +368,13 @@ impl<'a> Setup<'a> {
                 directory: Some(directory.clone()),
                 percept_types: types.clone(),
                 trace: level,
+                cycle_time: opts.cycle_time,
+                max_beliefs: opts.max_beliefs,
+                max_sent: opts.max_sent,
                 ..AgentConfig::default()
             };
-            agents.push(Agent::new(prog.clone(), &l.name, config));
+            let agent = obs.agent(i, &l.name, prog, &config);
+            agents.push(agent.unwrap_or_else(|| Agent::new(prog.clone(), &l.name, config)));
             if let Some(e) = &l.entity {
                 by_entity.entry(e.clone()).or_default().push(i);
             }
@@ -309,7 +386,7 @@ impl<'a> Setup<'a> {
                     entity: l.entity.clone(),
                     ..AgentStats::default()
                 },
-                acted: true,
+                waiting: false,
                 percepts: Vec::new(),
                 inbox: Vec::new(),
                 queued: true,
@@ -395,11 +472,17 @@ impl<'a> Setup<'a> {
         let mut last_progress = Instant::now();
         let mut iters: u64 = 0;
         let mut alive = self.slots.iter().filter(|s| !s.stats.stopped).count();
-        let mut fresh = vec![false; self.slots.len()];
+        let mut memory_checked = start;
+        let steered = obs.steers();
+        let mut env_finished = false;
         let end = loop {
-            if self.opts.time_limit.is_some_and(|l| start.elapsed() >= l) {
-                break EndReason::TimeLimit;
+            if let Some(reason) = self.interrupted_or_over(start, &mut memory_checked, obs) {
+                break reason;
             }
+            if obs.done() {
+                break EndReason::Released;
+            }
+            let forced = self.busy_steered(&steered, obs);
             let k = iters;
             iters += 1;
             let candidates: Vec<usize> = if self.opts.skip_idle {
@@ -411,6 +494,8 @@ impl<'a> Setup<'a> {
                 (0..self.slots.len()).collect()
             };
             let mut jobs: Vec<Job> = Vec::with_capacity(candidates.len());
+            // Cycles that can do something (new input, or the agent is not waiting).
+            let mut due = 0usize;
             for i in candidates {
                 let s = &mut self.slots[i];
                 s.queued = false;
@@ -422,8 +507,13 @@ impl<'a> Setup<'a> {
                 // Rounds since the slot was last looked at had nothing new for it.
                 s.stats.idle_ticks += k - s.counted;
                 s.counted = k + 1;
-                let new = s.acted || !s.percepts.is_empty() || !s.inbox.is_empty();
-                fresh[i] = new;
+                let new = !s.waiting
+                    || !s.percepts.is_empty()
+                    || !s.inbox.is_empty()
+                    || forced.contains(&i);
+                due += usize::from(new);
+                // Without skipping, a waiting agent is stepped too: its step is a no-op by
+                // construction (`Agent::step`), so the trace is the same either way.
                 if new || !self.opts.skip_idle {
                     jobs.push((
                         i,
@@ -434,14 +524,23 @@ impl<'a> Setup<'a> {
                     s.stats.idle_ticks += 1;
                 }
             }
-            if jobs.is_empty() && self.env.is_none() {
+            if due == 0 && self.env.is_none() {
                 break if alive == 0 {
                     EndReason::AllStopped
                 } else {
                     EndReason::Idle
                 };
             }
-            let outputs = match self.pool.round(jobs) {
+            let stepped: Vec<usize> = steered
+                .iter()
+                .copied()
+                .filter(|i| jobs.iter().any(|j| j.0 == *i))
+                .collect();
+            for &i in &stepped {
+                self.pool.with_agent(i, |a| obs.before_step(i, a));
+            }
+            let clock = Some(tick as f64 * TICK_SECONDS);
+            let outputs = match self.pool.round(jobs, clock) {
                 Ok(o) => o,
                 Err(e) => {
                     obs.warning(&e.0);
@@ -450,20 +549,20 @@ impl<'a> Setup<'a> {
             };
             let mut actions: Vec<(String, Term)> = Vec::new();
             let mut actors: Vec<usize> = Vec::new();
+            let mut sites: Vec<RuntimeError> = Vec::new();
             let mut sent: Vec<Message> = Vec::new();
             for (i, out) in outputs {
                 let s = &mut self.slots[i];
                 let was_stopped = s.stats.stopped;
-                let new = std::mem::replace(&mut fresh[i], false);
-                s.stats.cycles += 1;
-                let performed = out.actions;
-                s.stats.actions += performed;
-                s.acted = performed > 0 || !out.env_actions.is_empty() || !out.messages.is_empty();
-                let idle = !new && !s.acted && out.printed.is_empty() && out.stopped.is_none();
-                if idle {
-                    // A cycle with nothing new that did nothing: as if it was skipped.
+                s.waiting = out.waiting;
+                if out.skipped {
+                    // A waiting agent stepped without new input ran no cycle.
                     s.stats.idle_ticks += 1;
-                } else if let Some(t) = trace.as_mut() {
+                    continue;
+                }
+                s.stats.cycles += 1;
+                s.stats.actions += out.actions;
+                if let Some(t) = trace.as_mut() {
                     t.cycle(round, tick, &s.name, &out.events);
                 }
                 for e in &out.events {
@@ -474,21 +573,29 @@ impl<'a> Setup<'a> {
                 for line in &out.printed {
                     obs.printed(&s.name, line);
                 }
+                let mut at = out.env_sites.into_iter();
                 for a in out.env_actions {
                     match &s.entity {
                         Some(e) => {
                             s.stats.env_actions += 1;
                             actions.push((e.clone(), a));
                             actors.push(i);
+                            sites.push(at.next().unwrap_or_default());
                         }
                         None => {
+                            // GOAL: an `@env` action of an agent not connected to an
+                            // environment is fatal (in `goal test` as in `goal run`).
                             let msg =
                                 format!("environment action {a} by an agent without an entity");
                             if let Some(t) = trace.as_mut() {
                                 t.warning(round, tick, &s.name, &msg);
                             }
+                            let mut e = at.next().unwrap_or_default();
+                            e.message = msg;
+                            obs.warning(&format!("agent {} stopped: {e}", s.name));
                             s.stats.stopped = true;
-                            s.stats.error = Some(msg);
+                            s.stats.error = Some(e.to_string());
+                            self.pool.halt(i, e);
                             break;
                         }
                     }
@@ -506,29 +613,41 @@ impl<'a> Setup<'a> {
                 }
                 if s.stats.stopped && !was_stopped {
                     alive -= 1;
-                } else if s.acted && !s.stats.stopped {
+                } else if !s.waiting && !s.stats.stopped {
+                    mark(&mut self.ready, s, i);
+                }
+            }
+            for &i in &stepped {
+                let waiting = self.pool.with_agent(i, |a| {
+                    obs.after_step(i, a);
+                    a.waiting()
+                });
+                let s = &mut self.slots[i];
+                s.waiting = waiting.unwrap_or(true);
+                if !s.waiting && !s.stats.stopped {
                     mark(&mut self.ready, s, i);
                 }
             }
             // Messages: (sender, sequence) order; a stable sort keeps each sender's sequence.
             sent.sort_by(|a, b| a.sender.cmp(&b.sender));
             messages += sent.len() as u64;
-            for m in &sent {
-                let known = self.router.index(&m.receiver).is_some();
-                if let Some(t) = trace.as_mut() {
-                    t.message(round, tick, m, known);
-                }
-                obs.message(round, m, known);
-            }
             for m in sent {
-                match self.router.index(&m.receiver) {
-                    Some(j) => {
+                let receiver = self.router.index(&m.receiver);
+                let full = receiver.is_some_and(|j| self.mailbox_full(j, round, tick, obs));
+                let delivered = receiver.is_some() && !full;
+                if let Some(t) = trace.as_mut() {
+                    t.message(round, tick, &m, delivered);
+                }
+                obs.message(round, &m, delivered);
+                match receiver {
+                    Some(j) if !full => {
                         let s = &mut self.slots[j];
                         if !s.stats.stopped {
                             s.inbox.push(m);
                             mark(&mut self.ready, s, j);
                         }
                     }
+                    Some(_) => {}
                     None => obs.warning(&format!(
                         "message {} from {} to unknown agent {} dropped",
                         m.content, m.sender, m.receiver
@@ -537,21 +656,17 @@ impl<'a> Setup<'a> {
             }
             let mut finished = false;
             match &self.env {
+                // A finished environment stays as it is while a controller goes on.
+                Some(_) if env_finished => tick += 1,
                 Some(h) => match h.round(actions.clone()) {
                     Ok(reply) => {
-                        if let Some(t) = trace.as_mut() {
-                            for ((k, (entity, result)), (_, a)) in
-                                reply.results.iter().enumerate().zip(&actions)
-                            {
-                                let agent = &self.slots[actors[k]].name;
-                                t.action(round, tick, agent, entity, &a.to_string(), result);
-                            }
-                        }
-                        for (k, (_, result)) in reply.results.iter().enumerate() {
-                            if let ActionResult::Failed(m) = result {
-                                obs.action_failed(&self.slots[actors[k]].name, &actions[k].1, m);
-                            }
-                        }
+                        let acted = Acted {
+                            actions: &actions,
+                            actors: &actors,
+                            sites: &mut sites,
+                        };
+                        let when = (round, tick);
+                        alive -= self.results(acted, &reply.results, when, trace.as_mut(), obs);
                         tick = reply.tick;
                         finished = reply.finished;
                         self.deliver_percepts(reply.percepts);
@@ -574,25 +689,34 @@ impl<'a> Setup<'a> {
                     messages,
                 });
             }
-            if finished {
+            if finished && steered.is_empty() {
                 break EndReason::Completed;
             }
+            env_finished |= finished;
             if alive == 0 {
                 break EndReason::AllStopped;
             }
             if tick >= self.opts.max_ticks {
-                break EndReason::TickLimit;
+                break match self.env {
+                    Some(_) => EndReason::TickLimit,
+                    None => EndReason::CycleLimit,
+                };
             }
             if let Some(tps) = self.opts.realtime.filter(|t| *t > 0.0 && t.is_finite()) {
-                let due = start + Duration::from_secs_f64(round as f64 / tps);
+                let due = Duration::try_from_secs_f64(round as f64 / tps)
+                    .ok()
+                    .and_then(|d| start.checked_add(d));
                 let now = Instant::now();
-                if due > now {
+                if let Some(due) = due.filter(|d| *d > now) {
                     std::thread::sleep(due - now);
                 }
             }
         };
         for s in self.slots.iter_mut().filter(|s| !s.stats.stopped) {
-            s.stats.idle_ticks += iters.saturating_sub(s.counted);
+            s.stats.idle_ticks += round.saturating_sub(s.counted);
+        }
+        for &i in &steered {
+            self.pool.with_agent(i, |a| obs.ended(i, a, end));
         }
         let (deliveries, env_stats) = self.env_status();
         let summary = RunSummary {
@@ -619,6 +743,142 @@ impl<'a> Setup<'a> {
             None => None,
         };
         (summary, err)
+    }
+
+    /// Traces the results of a round's environment actions and stops each agent whose
+    /// action was refused (GOAL treats that as fatal); returns how many agents stopped.
+    fn results(
+        &mut self,
+        acted: Acted<'_>,
+        results: &[(String, ActionResult)],
+        (round, tick): (u64, u64),
+        mut trace: Option<&mut TraceWriter>,
+        obs: &mut dyn Observer,
+    ) -> usize {
+        let mut stopped = 0;
+        for (k, ((entity, result), (_, a))) in results.iter().zip(acted.actions).enumerate() {
+            let i = acted.actors[k];
+            if let Some(t) = trace.as_deref_mut() {
+                t.action(
+                    round,
+                    tick,
+                    &self.slots[i].name,
+                    entity,
+                    &a.to_string(),
+                    result,
+                );
+            }
+            if let ActionResult::Failed(m) = result {
+                obs.action_failed(&self.slots[i].name, a, m);
+                let mut e = std::mem::take(&mut acted.sites[k]);
+                e.message = format!("environment action {a} failed: {m}");
+                if self.halt(i, e, round, tick, trace.as_deref_mut(), obs) {
+                    stopped += 1;
+                }
+            }
+        }
+        stopped
+    }
+
+    /// The steered agents that must be stepped this round (queued for it).
+    fn busy_steered(&mut self, steered: &[usize], obs: &mut dyn Observer) -> Vec<usize> {
+        let mut busy = Vec::new();
+        for &i in steered {
+            if self.slots[i].stats.stopped {
+                continue;
+            }
+            if self.pool.with_agent(i, |a| obs.busy(i, a)) == Some(true) {
+                busy.push(i);
+                mark(&mut self.ready, &mut self.slots[i], i);
+            }
+        }
+        busy
+    }
+
+    /// Why the run must stop before the next round, if it must: a signal, the wall-time
+    /// limit, or the memory cap (checked every [`MEMORY_CHECK_EVERY`]).
+    fn interrupted_or_over(
+        &self,
+        start: Instant,
+        memory_checked: &mut Instant,
+        obs: &mut dyn Observer,
+    ) -> Option<EndReason> {
+        if self
+            .opts
+            .interrupt
+            .as_ref()
+            .is_some_and(|f| f.load(Ordering::Relaxed) != 0)
+        {
+            return Some(EndReason::Interrupted);
+        }
+        if self.opts.time_limit.is_some_and(|l| start.elapsed() >= l) {
+            return Some(EndReason::TimeLimit);
+        }
+        let cap = self.opts.max_memory?;
+        if memory_checked.elapsed() < MEMORY_CHECK_EVERY {
+            return None;
+        }
+        *memory_checked = Instant::now();
+        let used = super::memory::resident_bytes()?;
+        if used <= cap {
+            return None;
+        }
+        obs.warning(&format!(
+            "the run uses {} MiB of memory, more than its cap of {} MiB (--max-memory); stopping",
+            used >> 20,
+            cap >> 20
+        ));
+        Some(EndReason::MemoryLimit)
+    }
+
+    /// True when agent `j` has as many messages waiting as its mailbox may hold: the message
+    /// is dropped, counted, and reported the first time.
+    fn mailbox_full(&mut self, j: usize, round: u64, tick: u64, obs: &mut dyn Observer) -> bool {
+        let max = self.opts.max_mailbox;
+        let s = &mut self.slots[j];
+        if s.inbox.len() < max {
+            return false;
+        }
+        if s.stats.messages_dropped == 0 {
+            obs.warning(&format!(
+                "{}: mailbox full ({max} messages waiting, --max-mailbox); further messages to it \
+                 are dropped (round {round}, tick {tick})",
+                s.name
+            ));
+        }
+        s.stats.messages_dropped += 1;
+        true
+    }
+
+    /// Stops agent `i` on runtime error `e` from outside its cycle (the agent, its slot, the
+    /// trace and the observer all learn it); true when it was running.
+    fn halt(
+        &mut self,
+        i: usize,
+        e: RuntimeError,
+        round: u64,
+        tick: u64,
+        trace: Option<&mut TraceWriter>,
+        obs: &mut dyn Observer,
+    ) -> bool {
+        let s = &mut self.slots[i];
+        if s.stats.stopped {
+            return false;
+        }
+        let text = e.to_string();
+        if let Some(t) = trace {
+            t.warning(
+                round,
+                tick,
+                &s.name,
+                &format!("stopped: runtime error: {text}"),
+            );
+        }
+        obs.warning(&format!("agent {} stopped: {text}", s.name));
+        s.stats.stopped = true;
+        s.stats.error = Some(text);
+        self.pool.halt(i, e);
+        true
     }
 
     fn agent_infos(&self) -> Vec<AgentInfo> {

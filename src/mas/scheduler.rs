@@ -15,6 +15,9 @@ pub type Job = (usize, Vec<Term>, Vec<Message>);
 
 type Done = Vec<(usize, CycleOutput)>;
 
+/// A share of a round: the simulated time the agents' clocks answer, and the cycles to run.
+type Share = (Option<f64>, Vec<Job>);
+
 /// Rounds with fewer cycles than this run on the calling thread only.
 const INLINE_BELOW: usize = 4;
 
@@ -23,7 +26,7 @@ const INLINE_BELOW: usize = 4;
 type Agents = Arc<Vec<Mutex<Agent>>>;
 
 struct Worker {
-    tx: Sender<Vec<Job>>,
+    tx: Sender<Share>,
     rx: Receiver<Done>,
     join: Option<JoinHandle<()>>,
 }
@@ -38,7 +41,8 @@ pub struct Pool {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct PoolError(pub String);
 
-fn step(agents: &[Mutex<Agent>], jobs: Vec<Job>, done: &mut Done) -> Result<(), PoolError> {
+fn step(agents: &[Mutex<Agent>], share: Share, done: &mut Done) -> Result<(), PoolError> {
+    let (clock, jobs) = share;
     for (i, percepts, messages) in jobs {
         let cell = agents
             .get(i)
@@ -49,6 +53,7 @@ fn step(agents: &[Mutex<Agent>], jobs: Vec<Job>, done: &mut Done) -> Result<(), 
         // A panic in an agent is a bug; report it as a failed round instead of unwinding
         // through the run loop.
         let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            a.set_clock(clock);
             a.step(&percepts, &messages)
         }))
         .map_err(|_| PoolError(format!("agent {i} panicked")))?;
@@ -65,7 +70,7 @@ impl Pool {
         let agents: Agents = Arc::new(agents.into_iter().map(Mutex::new).collect());
         let mut ws = Vec::with_capacity(n - 1);
         for w in 1..n {
-            let (job_tx, job_rx) = unbounded::<Vec<Job>>();
+            let (job_tx, job_rx) = unbounded::<Share>();
             let (done_tx, done_rx) = unbounded::<Done>();
             let shared = agents.clone();
             let join = std::thread::Builder::new()
@@ -84,17 +89,32 @@ impl Pool {
         })
     }
 
+    /// Stops agent `i` with a runtime error (between rounds).
+    pub fn halt(&self, i: usize, e: crate::agent::RuntimeError) {
+        self.with_agent(i, |a| a.halt(e));
+    }
+
+    /// Runs `f` on agent `i` (between rounds); `None` when there is no such agent.
+    pub fn with_agent<T>(&self, i: usize, f: impl FnOnce(&mut Agent) -> T) -> Option<T> {
+        let mut a = self.agents.get(i)?.lock().ok()?;
+        Some(f(&mut a))
+    }
+
     /// The number of threads running agents (the calling thread included).
     pub fn workers(&self) -> usize {
         self.workers.len() + 1
     }
 
     /// Runs one cycle for each job (in parallel across threads) and returns the outputs sorted
-    /// by agent index.
-    pub fn round(&self, mut jobs: Vec<Job>) -> Result<Vec<(usize, CycleOutput)>, PoolError> {
+    /// by agent index; `clock` is the simulated time `get_time/1` answers (`None`: wall clock).
+    pub fn round(
+        &self,
+        mut jobs: Vec<Job>,
+        clock: Option<f64>,
+    ) -> Result<Vec<(usize, CycleOutput)>, PoolError> {
         let mut out = Vec::with_capacity(jobs.len());
         if jobs.len() < INLINE_BELOW || self.workers.is_empty() {
-            step(&self.agents, jobs, &mut out)?;
+            step(&self.agents, (clock, jobs), &mut out)?;
             out.sort_by_key(|(i, _)| *i);
             return Ok(out);
         }
@@ -110,11 +130,11 @@ impl Pool {
             let share = jobs.split_off(from);
             self.workers[w]
                 .tx
-                .send(share)
+                .send((clock, share))
                 .map_err(|_| PoolError("a worker thread stopped".into()))?;
             busy.push(w);
         }
-        let mine = step(&self.agents, jobs, &mut out);
+        let mine = step(&self.agents, (clock, jobs), &mut out);
         for w in busy {
             let done = self.workers[w]
                 .rx
@@ -143,9 +163,9 @@ impl Drop for Pool {
     }
 }
 
-fn work(agents: Agents, rx: Receiver<Vec<Job>>, tx: Sender<Done>) {
+fn work(agents: Agents, rx: Receiver<Share>, tx: Sender<Done>) {
     while let Ok(jobs) = rx.recv() {
-        let mut done = Vec::with_capacity(jobs.len());
+        let mut done = Vec::with_capacity(jobs.1.len());
         // An error (unknown index, poisoned lock) ends this thread; the caller then reports
         // that a worker stopped.
         if step(&agents, jobs, &mut done).is_err() || tx.send(done).is_err() {

@@ -18,11 +18,18 @@ pub struct AgentStats {
     pub idle_ticks: u64,
     /// Messages sent (one per receiver).
     pub messages_sent: u64,
+    /// Messages to this agent dropped because its mailbox was full (`--max-mailbox`).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub messages_dropped: u64,
     /// Why the agent stopped, when it stopped on a runtime error.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
     /// True when the agent stopped (main exited or an error).
     pub stopped: bool,
+}
+
+fn is_zero(n: &u64) -> bool {
+    *n == 0
 }
 
 /// Blocks delivered in the drop zone.
@@ -44,10 +51,18 @@ pub enum EndReason {
     AllStopped,
     /// No environment, and no agent has anything left to do.
     Idle,
-    /// The tick (or cycle) limit was hit.
+    /// The tick limit was hit.
     TickLimit,
+    /// No environment, and the cycle (round) limit was hit.
+    CycleLimit,
     /// The wall-time limit was hit.
     TimeLimit,
+    /// The process used more memory than the run's cap (`--max-memory`).
+    MemoryLimit,
+    /// Interrupted by a signal (Ctrl-C, SIGTERM); the round under way was finished.
+    Interrupted,
+    /// The observer steering the run (a test controller) had what it needed.
+    Released,
     /// The environment or a worker thread failed.
     Failure,
 }
@@ -60,7 +75,11 @@ impl EndReason {
             EndReason::AllStopped => "all agents stopped",
             EndReason::Idle => "no agent has anything left to do",
             EndReason::TickLimit => "tick limit reached",
+            EndReason::CycleLimit => "cycle limit reached",
             EndReason::TimeLimit => "time limit reached",
+            EndReason::MemoryLimit => "memory cap exceeded",
+            EndReason::Interrupted => "interrupted",
+            EndReason::Released => "the tests are over",
             EndReason::Failure => "runtime failure",
         }
     }

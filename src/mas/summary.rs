@@ -51,5 +51,12 @@ pub fn table(s: &RunSummary) -> String {
             a.cycles, a.actions, a.idle_ticks
         );
     }
+    for (name, a) in s.agents.iter().filter(|(_, a)| a.messages_dropped > 0) {
+        let _ = writeln!(
+            o,
+            "{name}: {} messages dropped (mailbox full, --max-mailbox)",
+            a.messages_dropped
+        );
+    }
     o
 }

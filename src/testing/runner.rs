@@ -1,6 +1,7 @@
 //! Running a `.test2g` file: parse and check it, load its MAS, then for each test index launch
-//! the MAS afresh (lock-step, seeded) with the tested agents under [`Controller`]s, and step
-//! every agent in name order until all tests are over or a bound runs out.
+//! the MAS afresh with the tested agents under [`Controller`]s, on the same round driver as
+//! `goal run` (`mas::run`, the controllers take part as its observer), until all tests are
+//! over or a bound runs out.
 //!
 //! Every named test block runs (decision 7): the i-th test of every agent block runs in the
 //! i-th launch. Blocks named `before` and `after` are not tests; their sections run before and
@@ -8,18 +9,15 @@
 
 use super::controller::Controller;
 use super::report::{Outcome, TestReport};
-use crate::agent::{Agent, AgentConfig, Event, Message, StopReason, TraceLevel};
+use crate::agent::{Agent, AgentConfig, Program, TraceLevel};
 use crate::diag::Diagnostic;
-use crate::env::thread::{EnvHandle, Mode};
-use crate::mas::launch::{Launch, Launcher};
-use crate::mas::routing::Router;
-use crate::mas::run::{agent_seed, env_params, percept_types, Quiet, RunOptions};
-use crate::mas::{system, MasSystem};
+use crate::mas::run::{Observer, RunOptions};
+use crate::mas::{system, EndReason, MasSystem};
 use crate::syntax::test2g::ast::{MasTest, NamedTest, TestSection};
-use crate::term::Term;
+use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// Options of `goal test`.
 #[derive(Clone, Debug)]
@@ -28,6 +26,8 @@ pub struct TestOptions {
     pub max_ticks: u64,
     /// Replaces the MAS file's seed.
     pub seed: Option<u64>,
+    /// Do not step agents waiting for new input (the outcome is the same either way).
+    pub skip_idle: bool,
 }
 
 impl Default for TestOptions {
@@ -35,6 +35,7 @@ impl Default for TestOptions {
         TestOptions {
             max_ticks: 10_000,
             seed: None,
+            skip_idle: true,
         }
     }
 }
@@ -131,17 +132,6 @@ fn plan(test: &MasTest) -> Vec<Vec<Job<'_>>> {
     launches
 }
 
-struct Slot {
-    name: String,
-    entity: Option<String>,
-    agent: Agent,
-    control: Option<(usize, Controller)>,
-    acted: bool,
-    stopped: bool,
-    percepts: Vec<Term>,
-    inbox: Vec<Message>,
-}
-
 /// What every launch of a test file shares.
 struct Ctx<'a> {
     system: &'a MasSystem,
@@ -150,229 +140,152 @@ struct Ctx<'a> {
     source: &'a str,
 }
 
-/// Launches the MAS once and runs `jobs`; one report per job.
-fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport> {
-    let (system, test, file, source) = (ctx.system, ctx.test, ctx.file, ctx.source);
-    let fail_all = |m: String| -> Vec<TestReport> {
-        jobs.iter()
-            .map(|j| error_report(file, &j.agent, &j.test, m.clone()))
-            .collect()
-    };
-    let mut launcher = Launcher::new(&system.rules);
-    let mut launches: Vec<Launch> = launcher.unconditional();
-    let run_opts = RunOptions {
-        seed: opts.seed,
-        ..RunOptions::default()
-    };
-    let (env, info, seed) = match &system.env {
-        Some(setup) => {
-            let (p, seed, _) = env_params(setup, &run_opts, &mut Quiet);
-            let world = match setup.kind.create(&p) {
-                Ok((w, _)) => w,
-                Err(ps) => return fail_all(ps.iter().map(|p| p.render()).collect()),
-            };
-            let handle = EnvHandle::spawn(world, Mode::LockStep);
-            match handle.info() {
-                Ok(info) => (Some(handle), Some(info), seed),
-                Err(e) => return fail_all(format!("environment: {e}")),
-            }
-        }
-        None => (None, None, opts.seed.unwrap_or(0)),
-    };
-    if let Some(info) = &info {
-        for e in &info.entities {
-            if let Some(l) = launcher.entity(e) {
-                launches.extend(l);
-            }
-        }
+/// The test controllers of one launch, taking part in the run as its observer: they create
+/// the tested agents, step them while a section runs, and end the run when every test is over.
+struct Tests<'a, 'j> {
+    ctx: &'a Ctx<'a>,
+    jobs: &'j [Job<'j>],
+    /// Per agent index: the job it runs and its controller.
+    controllers: BTreeMap<usize, (usize, Controller)>,
+    /// Reports decided before the run (compile errors).
+    reports: Vec<Option<TestReport>>,
+    launched: Vec<bool>,
+    /// The last warning of the run (says why the environment failed).
+    last_warning: String,
+    timeout: Option<Duration>,
+    max_ticks: u64,
+}
+
+impl Observer for Tests<'_, '_> {
+    fn warning(&mut self, text: &str) {
+        self.last_warning = text.to_string();
     }
-    launches.sort_by(|a, b| a.name.cmp(&b.name));
-    let names: Vec<String> = launches.iter().map(|l| l.name.clone()).collect();
-    let types = Arc::new(info.as_ref().map(percept_types).unwrap_or_default());
-    let mut reports: Vec<Option<TestReport>> = vec![None; jobs.len()];
-    let mut slots = Vec::new();
-    for l in &launches {
-        let Some(prog) = system.programs.get(&l.reference) else {
-            return fail_all(format!(
-                "launch of {}: no agent file `{}`",
-                l.name, l.reference
-            ));
-        };
+    fn agent(
+        &mut self,
+        i: usize,
+        name: &str,
+        program: &Arc<Program>,
+        config: &AgentConfig,
+    ) -> Option<Agent> {
+        let k = self.jobs.iter().position(|j| j.agent == name)?;
+        self.launched[k] = true;
+        let (file, source) = (self.ctx.file, self.ctx.source);
         let config = AgentConfig {
-            seed: agent_seed(seed, &l.name),
-            agents: names.clone(),
-            percept_types: types.clone(),
             trace: TraceLevel::Changes,
-            ..AgentConfig::default()
+            ..config.clone()
         };
-        let job = jobs.iter().position(|j| j.agent == l.name);
-        let (agent, control) = match job {
-            Some(k) => match Controller::compile(prog, file, source, &jobs[k].sections) {
-                Ok((p, c)) => {
-                    let mut a = Agent::new(p, &l.name, config);
-                    c.attach(&mut a);
-                    (a, Some((k, c)))
-                }
-                Err(ds) => {
-                    let j = &jobs[k];
-                    reports[k] = Some(error_report(file, &j.agent, &j.test, render(&ds, source)));
-                    (Agent::new(prog.clone(), &l.name, config), None)
-                }
-            },
-            None => (Agent::new(prog.clone(), &l.name, config), None),
-        };
-        slots.push(Slot {
-            name: l.name.clone(),
-            entity: l.entity.clone(),
-            agent,
-            control,
-            acted: true,
-            stopped: false,
-            percepts: Vec::new(),
-            inbox: Vec::new(),
-        });
-    }
-    for (k, j) in jobs.iter().enumerate() {
-        if reports[k].is_none() && !slots.iter().any(|s| s.name == j.agent) {
-            let m = format!("agent `{}` was not launched by {}", j.agent, test.mas.value);
-            reports[k] = Some(error_report(file, &j.agent, &j.test, m));
-        }
-    }
-    let router = Router::new(&names);
-    let deliver = |slots: &mut [Slot], batches: Vec<(String, Vec<Term>)>| {
-        for (entity, batch) in batches {
-            for s in slots.iter_mut() {
-                if s.entity.as_deref() == Some(entity.as_str()) && !s.stopped {
-                    s.percepts.extend(batch.iter().cloned());
-                }
+        match Controller::compile(program, file, source, &self.jobs[k].sections) {
+            Ok((p, c)) => {
+                let mut a = Agent::new(p, name, config);
+                c.attach(&mut a);
+                self.controllers.insert(i, (k, c));
+                Some(a)
+            }
+            Err(ds) => {
+                let j = &self.jobs[k];
+                let m = render(&ds, source);
+                self.reports[k] = Some(error_report(file, &j.agent, &j.test, m));
+                None
             }
         }
-    };
-    if let Some(h) = &env {
-        match h.perceive(&[]) {
-            Ok(b) => deliver(&mut slots, b),
-            Err(e) => return fail_all(format!("environment: {e}")),
+    }
+    fn steers(&self) -> Vec<usize> {
+        self.controllers.keys().copied().collect()
+    }
+    fn busy(&self, i: usize, agent: &Agent) -> bool {
+        self.controllers.get(&i).is_some_and(|(_, c)| c.busy(agent))
+    }
+    fn before_step(&mut self, i: usize, agent: &Agent) {
+        if let Some((_, c)) = self.controllers.get(&i) {
+            c.before_step(agent);
         }
     }
+    fn after_step(&mut self, i: usize, agent: &mut Agent) {
+        if let Some((_, c)) = self.controllers.get_mut(&i) {
+            c.after_step(agent);
+        }
+    }
+    fn done(&self) -> bool {
+        self.controllers
+            .values()
+            .all(|(_, c)| c.outcome().is_some())
+    }
+    fn ended(&mut self, i: usize, agent: &mut Agent, end: EndReason) {
+        let reason = match end {
+            EndReason::TimeLimit => format!(
+                "the timeout of {}s ran out",
+                self.timeout.map_or(0, |t| t.as_secs())
+            ),
+            EndReason::TickLimit | EndReason::CycleLimit => {
+                format!("the limit of {} ticks was reached", self.max_ticks)
+            }
+            EndReason::Failure => format!("the environment failed: {}", self.last_warning),
+            _ => return,
+        };
+        if let Some((_, c)) = self.controllers.get_mut(&i) {
+            c.time_out(agent, &reason);
+        }
+    }
+}
+
+/// Launches the MAS once and runs `jobs` on the round driver of `goal run`; one report per
+/// job.
+fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport> {
+    let (file, test) = (ctx.file, ctx.test);
     let timeout = test
         .timeout
         .as_ref()
         .filter(|t| t.value > 0)
         .map(|t| Duration::from_secs(t.value));
-    let start = Instant::now();
-    let mut tick: u64 = 0;
-    let mut rounds: u64 = 0;
-    let mut env_done = false;
-    let open = |slots: &[Slot]| {
-        slots.iter().any(|s| {
-            s.control
-                .as_ref()
-                .is_some_and(|(_, c)| c.outcome().is_none())
-        })
+    let run_opts = RunOptions {
+        seed: opts.seed,
+        max_ticks: opts.max_ticks,
+        skip_idle: opts.skip_idle,
+        time_limit: timeout,
+        trace_rules: false,
+        ..RunOptions::default()
     };
-    while open(&slots) {
-        let bound = if timeout.is_some_and(|t| start.elapsed() >= t) {
-            Some(format!(
-                "the timeout of {}s ran out",
-                timeout.map_or(0, |t| t.as_secs())
-            ))
-        } else if rounds >= opts.max_ticks {
-            Some(format!("the limit of {} ticks was reached", opts.max_ticks))
-        } else {
-            None
-        };
-        if let Some(reason) = bound {
-            for s in slots.iter_mut() {
-                if let Some((_, c)) = s.control.as_mut() {
-                    c.time_out(&mut s.agent, &reason);
-                }
-            }
-            break;
-        }
-        let mut actions: Vec<(String, Term)> = Vec::new();
-        let mut sent: Vec<Message> = Vec::new();
-        for s in slots.iter_mut() {
-            if s.stopped {
-                s.percepts.clear();
-                s.inbox.clear();
-                continue;
-            }
-            let busy = s.control.as_ref().is_some_and(|(_, c)| c.busy(&s.agent));
-            if !busy && !s.acted && s.percepts.is_empty() && s.inbox.is_empty() {
-                continue;
-            }
-            if let Some((_, c)) = &s.control {
-                c.before_step(&s.agent);
-            }
-            let percepts = std::mem::take(&mut s.percepts);
-            let inbox = std::mem::take(&mut s.inbox);
-            let out = s.agent.step(&percepts, &inbox);
-            if let Some((_, c)) = s.control.as_mut() {
-                c.after_step(&mut s.agent);
-            }
-            let performed = out
-                .events
+    let mut tests = Tests {
+        ctx,
+        jobs,
+        controllers: BTreeMap::new(),
+        reports: vec![None; jobs.len()],
+        launched: vec![false; jobs.len()],
+        last_warning: String::new(),
+        timeout,
+        max_ticks: opts.max_ticks,
+    };
+    let summary = match crate::mas::run(ctx.system, &run_opts, None, &mut tests) {
+        Ok((summary, _)) => summary,
+        Err(ps) => {
+            let m: String = ps.iter().map(|p| p.render()).collect();
+            return jobs
                 .iter()
-                .any(|e| matches!(e, Event::ActionPerformed { .. }));
-            s.acted = performed || !out.env_actions.is_empty() || !out.messages.is_empty();
-            // An agent without an entity has no environment to act on: the action's
-            // postcondition is its whole effect (e.g. the blocks-world stacker).
-            if let Some(e) = &s.entity {
-                actions.extend(out.env_actions.into_iter().map(|a| (e.clone(), a)));
-            }
-            sent.extend(out.messages);
-            match out.stopped {
-                Some(StopReason::Error(_)) | Some(StopReason::MainExited) => s.stopped = true,
-                None => {}
-            }
+                .map(|j| error_report(file, &j.agent, &j.test, m.clone()))
+                .collect();
         }
-        sent.sort_by(|a, b| a.sender.cmp(&b.sender));
-        let mut inboxes: Vec<Vec<Message>> = vec![Vec::new(); slots.len()];
-        let _undelivered = router.route(sent, &mut inboxes);
-        for (s, b) in slots.iter_mut().zip(inboxes) {
-            if !s.stopped {
-                s.inbox.extend(b);
-            }
+    };
+    let mut reports = std::mem::take(&mut tests.reports);
+    for (k, j) in jobs.iter().enumerate() {
+        if reports[k].is_none() && !tests.launched[k] {
+            let m = format!("agent `{}` was not launched by {}", j.agent, test.mas.value);
+            reports[k] = Some(error_report(file, &j.agent, &j.test, m));
         }
-        match &env {
-            Some(h) if !env_done => match h.round(actions) {
-                Ok(reply) => {
-                    tick = reply.tick;
-                    env_done = reply.finished;
-                    deliver(&mut slots, reply.percepts);
-                }
-                Err(e) => {
-                    let reason = format!("the environment failed: {e}");
-                    for s in slots.iter_mut() {
-                        if let Some((_, c)) = s.control.as_mut() {
-                            c.time_out(&mut s.agent, &reason);
-                        }
-                    }
-                    break;
-                }
-            },
-            _ => tick += 1,
-        }
-        rounds += 1;
     }
-    if let Some(h) = env {
-        h.stop();
-    }
-    for s in slots {
-        if let Some((k, c)) = s.control {
-            let outcome = c.outcome().cloned().unwrap_or(Outcome::Error {
-                message: "the test did not finish".into(),
-            });
-            reports[k] = Some(TestReport {
-                file: file.to_string(),
-                agent: jobs[k].agent.clone(),
-                test: jobs[k].test.clone(),
-                outcome,
-                cycles: s.agent.cycles(),
-                ticks: tick,
-                watch: c.watch.clone(),
-            });
-        }
+    for (_, (k, c)) in std::mem::take(&mut tests.controllers) {
+        let outcome = c.outcome().cloned().unwrap_or(Outcome::Error {
+            message: "the test did not finish".into(),
+        });
+        let cycles = summary.agents.get(&jobs[k].agent).map_or(0, |a| a.cycles);
+        reports[k] = Some(TestReport {
+            file: file.to_string(),
+            agent: jobs[k].agent.clone(),
+            test: jobs[k].test.clone(),
+            outcome,
+            cycles,
+            ticks: summary.ticks,
+            watch: c.watch.clone(),
+        });
     }
     reports.into_iter().flatten().collect()
 }

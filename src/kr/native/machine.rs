@@ -135,6 +135,7 @@ pub(crate) struct Ctx<'a> {
     pub limits: Limits,
     pub rng: &'a mut ChaCha8Rng,
     pub out: &'a mut String,
+    pub clock: &'a mut super::Clock,
 }
 
 /// One running query.

@@ -36,6 +36,19 @@ pub struct NativeEngine {
     pub occurs_check: bool,
     rng: ChaCha8Rng,
     output: String,
+    /// What `get_time/1` answers.
+    pub clock: Clock,
+}
+
+/// The time `get_time/1` answers: wall-clock time, or simulated time set by the runtime
+/// (lock-step runs stay reproducible); reads are counted so the runtime knows a query
+/// depended on the time.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Clock {
+    /// Simulated seconds since the start of the run; `None`: wall-clock time.
+    pub now: Option<f64>,
+    /// Number of times the time was read.
+    pub reads: u64,
 }
 
 impl NativeEngine {
@@ -46,6 +59,7 @@ impl NativeEngine {
             occurs_check: false,
             rng: ChaCha8Rng::seed_from_u64(seed),
             output: String::new(),
+            clock: Clock::default(),
         }
     }
 
@@ -53,6 +67,12 @@ impl NativeEngine {
     pub fn with_limits(mut self, limits: Limits) -> NativeEngine {
         self.limits = limits;
         self
+    }
+
+    /// A value that changes whenever a query drew a random number or read the clock (a
+    /// query that did neither gives the same answers when asked again on the same state).
+    pub fn chance(&self) -> u128 {
+        self.rng.get_word_pos() + u128::from(self.clock.reads)
     }
 
     /// Runs `query`, handing each answer to `each` until it returns false or answers run out.
@@ -85,6 +105,7 @@ impl NativeEngine {
                 limits: self.limits,
                 rng: &mut self.rng,
                 out: &mut self.output,
+                clock: &mut self.clock,
             };
             let mut s = Solver::new(m, cx, query, self.occurs_check);
             let mut n = 0;
