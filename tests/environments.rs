@@ -213,7 +213,8 @@ fn bw4t_server_map_names_in_any_case_and_xml_paths_are_accepted() {
         .unwrap();
         let out = goal(&dir, &["run", "team.mas2g", "--max-ticks", "5"]);
         let err = text(&out.stderr);
-        assert!(out.status.success(), "{m}: {err}");
+        // Exit code 3: the map loaded and the run stopped at the tick limit.
+        assert_eq!(out.status.code(), Some(3), "{m}: {err}");
         assert!(!err.contains("warning"), "{m}: {err}");
     }
 }
