@@ -21,6 +21,7 @@
 
 pub mod default_team;
 pub mod launch;
+pub mod modular;
 pub mod routing;
 pub mod run;
 pub mod scheduler;

@@ -96,6 +96,12 @@ pub struct MasSystem {
 pub fn load_mas(path: &Path) -> Result<MasSystem, Vec<Problem>> {
     let file = path.display().to_string();
     let text = crate::syntax::check::read_source(path).map_err(|d| vec![Problem::bare(d)])?;
+    // Modular GOAL (A) and MARBEL (B) systems are assembled by their own loader.
+    if crate::syntax::modular::detect::mas_generation(&text)
+        != crate::syntax::modular::ast::Generation::Classic
+    {
+        return super::modular::load(path, &text);
+    }
     let base = path.parent().unwrap_or(Path::new(".")).to_path_buf();
     from_mas_text(&file, &text, Origin::Disk(base))
 }
@@ -210,7 +216,7 @@ fn compile_file(origin: &Origin, path: &str) -> Result<Compiled, Vec<Problem>> {
 
 /// The init parameters of a built-in `bw4t` environment section (the map path made relative to
 /// the `.mas2g` file when it names a file there).
-fn env_params(mas: &MasFile, origin: &Origin) -> Option<InitParams> {
+pub(crate) fn env_params(mas: &MasFile, origin: &Origin) -> Option<InitParams> {
     let env = mas.environment.as_ref()?;
     let name = env.env.as_ref()?;
     if !name

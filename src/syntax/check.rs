@@ -1,7 +1,8 @@
 //! Checking one file by its extension: read it safely, parse it, collect every diagnostic.
 
 use crate::diag::Diagnostic;
-use crate::syntax::{goal, prolog::Reader};
+use crate::syntax::goal;
+use crate::syntax::modular::{self, ast::Generation};
 use std::path::Path;
 
 /// Files larger than this are refused with a diagnostic.
@@ -88,6 +89,11 @@ pub fn check_path(path: &Path) -> FileReport {
             ));
             d
         }
+        "mod2g" if modular::detect::module_generation(&source, base_dir(path)) != Generation::Classic => {
+            let gen = modular::detect::module_generation(&source, base_dir(path));
+            modular::check::check_module_file(path, &source, gen)
+        }
+        "act2g" => modular::check::check_act_file(path, &source),
         "mod2g" => {
             let (module, mut d) = goal::parse_mod2g(&file, &source);
             if let Some(m) = &module {
@@ -99,11 +105,7 @@ pub fn check_path(path: &Path) -> FileReport {
             }
             d
         }
-        "pl" => {
-            let (clauses, mut d) = Reader::new(file.as_str()).clauses(&source, 0);
-            d.extend(crate::syntax::validate::validate_prolog(&clauses, &file));
-            d
-        }
+        "pl" => modular::check::check_pl_file(path, &source),
         "mas2g" => {
             let (mas, mut d) = crate::syntax::mas2g::parse(&source, &file);
             d.extend(crate::syntax::mas2g::check_files(&mas, base_dir(path)));
@@ -122,7 +124,7 @@ pub fn check_path(path: &Path) -> FileReport {
             file.clone(),
             0..0,
         )
-        .with_hint("goal check reads .goal, .mod2g, .pl, .mas2g and .test2g files")],
+        .with_hint("goal check reads .goal, .mod2g, .act2g, .pl, .mas2g and .test2g files, and directories")],
     };
     FileReport {
         file,
@@ -136,8 +138,19 @@ fn base_dir(path: &Path) -> &Path {
     path.parent().unwrap_or(Path::new("."))
 }
 
-/// Checks one file and, for a `.mas2g`, also the agent files it names that exist (each once).
+/// Checks one file and, for a `.mas2g`, also the agent files it names that exist (each once);
+/// for a directory, every `.mas2g` file in it with everything those use.
 pub fn check_path_with_agents(path: &Path) -> Vec<FileReport> {
+    if path.is_dir() {
+        return check_dir(path);
+    }
+    if path.extension().and_then(|e| e.to_str()) == Some("mas2g") {
+        if let Ok(text) = read_source(path) {
+            if modular::detect::mas_generation(&text) != Generation::Classic {
+                return modular::check::check_mas(path, &text);
+            }
+        }
+    }
     let report = check_path(path);
     let mut out = Vec::new();
     if path.extension().and_then(|e| e.to_str()) == Some("mas2g") && !report.source.is_empty() {
@@ -149,5 +162,42 @@ pub fn check_path_with_agents(path: &Path) -> Vec<FileReport> {
         }
     }
     out.insert(0, report);
+    out
+}
+
+/// Checks a project directory: every `.mas2g` file directly in it (sorted by name) and what
+/// they use, each file reported once.
+pub fn check_dir(dir: &Path) -> Vec<FileReport> {
+    let mut mas: Vec<_> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().and_then(|e| e.to_str()) == Some("mas2g"))
+        .collect();
+    mas.sort();
+    if mas.is_empty() {
+        let file = dir.display().to_string();
+        let d = Diagnostic::error(
+            "E0024",
+            format!("no .mas2g file in `{file}`"),
+            file.clone(),
+            0..0,
+        )
+        .with_hint("give the directory of a project, or the files to check");
+        return vec![FileReport {
+            file,
+            source: String::new(),
+            diagnostics: vec![d],
+        }];
+    }
+    let mut out: Vec<FileReport> = Vec::new();
+    for m in mas {
+        for r in check_path_with_agents(&m) {
+            if !out.iter().any(|o| o.file == r.file) {
+                out.push(r);
+            }
+        }
+    }
     out
 }

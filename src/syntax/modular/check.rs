@@ -1,0 +1,279 @@
+//! `goal check` for modular files: a modular `.mas2g` with every agent it defines (each agent
+//! assembled and validated as one program, diagnostics mapped back to their files), and
+//! `.mod2g`/`.act2g`/`.pl` files on their own.
+
+use super::assemble::{assemble, kr_clauses, AgentBuild};
+use super::ast::Generation;
+use super::mas::{AgentItem, ModMas};
+use crate::diag::{Diagnostic, Severity};
+use crate::syntax::ast::{AgentProgram, Module, ModuleKind, ModuleOptions};
+use crate::syntax::check::FileReport;
+use crate::syntax::mas2g::ast::EntitySpec;
+use crate::syntax::prolog::Reader;
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::Arc;
+
+/// Assembles and validates one agent definition; diagnostics are in the shared text of the
+/// returned build.
+pub fn check_agent(
+    mas: &ModMas,
+    mas_text: &str,
+    base: &Path,
+    agent: &super::mas::AgentDef,
+) -> (AgentBuild, Vec<Diagnostic>) {
+    let build = assemble(&mas.file, mas_text, base, agent, mas.generation);
+    let mut diags = build.diagnostics.clone();
+    for (name, span) in &build.unsupported {
+        diags.push(
+            Diagnostic::warning(
+                "W0606",
+                format!("`{name}` is read but this runtime cannot run it yet"),
+                &mas.file,
+                span.clone(),
+            )
+            .with_hint("`goal run` stops with an error at load time; see docs/modular-goal.md"),
+        );
+    }
+    if !diags.iter().any(Diagnostic::is_error) {
+        let mas_end = build.sources.segments[0].end;
+        for d in crate::syntax::validate::validate(&build.program, None) {
+            // What the lowering added points into the MAS file: its warnings are not the user's.
+            if d.span.start <= mas_end && !d.is_error() {
+                continue;
+            }
+            // (B) a .pl file holds facts and rules of one predicate (database and knowledge).
+            if mas.generation == Generation::Marbel && d.code == "E0122" {
+                continue;
+            }
+            diags.push(d);
+        }
+    }
+    (build, diags)
+}
+
+/// Checks a modular `.mas2g` file and every file its agents use; one report per file.
+pub fn check_mas(path: &Path, text: &str) -> Vec<FileReport> {
+    let file = path.display().to_string();
+    let base = path.parent().unwrap_or(Path::new("."));
+    let (mas, mut mas_diags) = super::mas::parse(text, &file);
+    mas_diags.extend(mas_checks(&mas));
+    let mut by_file: BTreeMap<String, (Arc<str>, Vec<Diagnostic>)> = BTreeMap::new();
+    for agent in &mas.agents {
+        let (build, diags) = check_agent(&mas, text, base, agent);
+        for s in &build.sources.segments[1..] {
+            by_file
+                .entry(s.name.clone())
+                .or_insert_with(|| (s.text.clone(), Vec::new()));
+        }
+        for d in diags {
+            let (d, _) = build.sources.localize(d);
+            if d.file == file {
+                mas_diags.push(d);
+            } else if let Some(e) = by_file.get_mut(&d.file) {
+                e.1.push(d);
+            }
+        }
+    }
+    let mut out = vec![report(file, Arc::from(text), mas_diags)];
+    out.extend(
+        by_file
+            .into_iter()
+            .map(|(f, (src, diags))| report(f, src, diags)),
+    );
+    out
+}
+
+fn report(file: String, source: Arc<str>, mut diagnostics: Vec<Diagnostic>) -> FileReport {
+    diagnostics.sort_by(|a, b| {
+        (a.span.start, a.span.end, &a.code, &a.message).cmp(&(
+            b.span.start,
+            b.span.end,
+            &b.code,
+            &b.message,
+        ))
+    });
+    diagnostics.dedup();
+    FileReport {
+        file,
+        source: source.to_string(),
+        diagnostics,
+    }
+}
+
+/// Checks of the MAS file itself: the environment, launch rules naming definitions, and
+/// definitions never launched.
+fn mas_checks(mas: &ModMas) -> Vec<Diagnostic> {
+    let mut out = Vec::new();
+    let f = mas.file.clone();
+    if let Some(env) = &mas.env {
+        if !is_builtin_env(&env.reference.value) {
+            out.push(
+                Diagnostic::warning(
+                    "W0207",
+                    format!("environment `{}` is not built in", env.reference.value),
+                    f.clone(),
+                    env.reference.span.clone(),
+                )
+                .with_hint("only BW4T is built in (a reference whose name contains `bw4t`); the system runs without an environment"),
+            );
+        }
+    }
+    let defined: Vec<&str> = mas.agents.iter().map(|a| a.name.value.as_str()).collect();
+    let mut launched = Vec::new();
+    for r in &mas.launch {
+        for i in &r.instructions {
+            launched.push(i.reference.value.clone());
+            if !defined.contains(&i.reference.value.as_str()) {
+                out.push(
+                    Diagnostic::error(
+                        "E0206",
+                        format!("no agent definition `{}`", i.reference.value),
+                        f.clone(),
+                        i.reference.span.clone(),
+                    )
+                    .with_hint(format!("defined: {}", defined.join(", "))),
+                );
+            }
+        }
+        if let Some(EntitySpec::Constraints {
+            entity_type: Some(t),
+            ..
+        }) = &r.condition
+        {
+            let bw4t = mas
+                .env
+                .as_ref()
+                .is_some_and(|e| is_builtin_env(&e.reference.value));
+            if bw4t && t.value != "bot" && t.value != "human" {
+                out.push(
+                    Diagnostic::warning(
+                        "W0607",
+                        format!("BW4T has no entities of type `{}`", t.value),
+                        f.clone(),
+                        t.span.clone(),
+                    )
+                    .with_hint("BW4T entity types are `bot` and `human`"),
+                );
+            }
+        }
+    }
+    for a in &mas.agents {
+        if !launched.contains(&a.name.value) {
+            out.push(
+                Diagnostic::warning(
+                    "W0208",
+                    format!("agent `{}` is never launched", a.name.value),
+                    f.clone(),
+                    a.name.span.clone(),
+                )
+                .with_hint(format!(
+                    "add `when * launch {}.` to the launch policy",
+                    a.name.value
+                )),
+            );
+        }
+        if mas.generation == Generation::Modular
+            && a.items
+                .iter()
+                .any(|i| matches!(i, AgentItem::Percept { .. }))
+        {
+            // Reported by the parser as mixing; nothing more here.
+        }
+    }
+    out
+}
+
+/// True for environment references run by the built-in BW4T (`bw4t-client-3.8.5.jar`, ...).
+pub fn is_builtin_env(reference: &str) -> bool {
+    let name = reference.rsplit(['/', '\\']).next().unwrap_or(reference);
+    name.to_ascii_lowercase().contains("bw4t")
+}
+
+/// Checks a `.mod2g` file of generation (A) or (B) on its own.
+pub fn check_module_file(path: &Path, text: &str, gen: Generation) -> Vec<Diagnostic> {
+    let file = path.display().to_string();
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let (parsed, mut diags) =
+        super::parse_mod2g(&file, text, 0, text.len(), gen == Generation::Marbel);
+    let Some(m) = parsed else { return diags };
+    for u in &m.uses {
+        for r in &u.refs {
+            let exts: &[&str] = match u.case.as_ref().map(|c| c.value) {
+                Some(super::ast::UseCase::Module) => &["mod2g"],
+                Some(super::ast::UseCase::ActionSpec) => &["act2g"],
+                Some(super::ast::UseCase::Mas | super::ast::UseCase::Planner) => continue,
+                Some(_) => &["pl"],
+                None => &["mod2g", "act2g", "mas2g", "pl"],
+            };
+            if super::assemble::resolve(dir, &r.value, exts).is_none() {
+                diags.push(
+                    Diagnostic::error(
+                        "E0607",
+                        format!("`{}` not found", r.value),
+                        file.clone(),
+                        r.span.clone(),
+                    )
+                    .with_hint("references are relative to this file's directory"),
+                );
+            }
+        }
+    }
+    for u in &m.unsupported {
+        diags.push(
+            Diagnostic::warning(
+                "W0606",
+                format!("`{}` is read but this runtime cannot run it yet", u.name),
+                file.clone(),
+                u.span.clone(),
+            )
+            .with_hint("`goal run` stops with an error at load time"),
+        );
+    }
+    diags.extend(crate::syntax::validate::validate_module_file(
+        &m.module, &file, None,
+    ));
+    diags
+}
+
+/// Checks an `.act2g` file on its own.
+pub fn check_act_file(path: &Path, text: &str) -> Vec<Diagnostic> {
+    let file = path.display().to_string();
+    let (parsed, mut diags) = super::parse_act2g(&file, text, 0, text.len());
+    let Some(a) = parsed else { return diags };
+    let span = 0..text.len();
+    let module = Module {
+        kind: ModuleKind::Event,
+        options: ModuleOptions::default(),
+        knowledge: Vec::new(),
+        beliefs: Vec::new(),
+        goals: Vec::new(),
+        program: None,
+        action_specs: a.specs,
+        imports: Vec::new(),
+        sections: Vec::new(),
+        head_span: 0..0,
+        span,
+    };
+    let program = AgentProgram {
+        file: file.clone(),
+        modules: vec![module],
+        imports: Vec::new(),
+        span: 0..text.len(),
+    };
+    diags.extend(
+        crate::syntax::validate::validate_module_file(&program.modules[0], &file, None)
+            .into_iter()
+            .filter(|d| d.severity == Severity::Error || d.code != "W0101"),
+    );
+    diags
+}
+
+/// Checks a `.pl` file: `:- dynamic` directives are allowed (modular GOAL and MARBEL).
+pub fn check_pl_file(path: &Path, text: &str) -> Vec<Diagnostic> {
+    let file = path.display().to_string();
+    let (clauses, mut diags) = Reader::new(file.as_str()).clauses(text, 0);
+    let clauses = kr_clauses(clauses, &file, &mut diags);
+    diags.extend(crate::syntax::validate::validate_prolog(&clauses, &file));
+    diags
+}
