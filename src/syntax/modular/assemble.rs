@@ -288,14 +288,17 @@ impl Assembler<'_> {
         let Some((name, start, end)) = self.read(path, &span) else {
             return;
         };
-        let text = self.sources.text[start..end].to_string();
+        let text = blank_dynamic(&self.sources.text[start..end]);
         let (clauses, diags) = Reader::new(name.as_str()).clauses(&text, start);
         self.diags.extend(diags);
         for c in kr_clauses(clauses, &name, &mut self.diags) {
             let rule = matches!(c.term.functor(), Some((f, 2)) if f.name() == ":-");
             match case {
-                // (B): the .pl file is the initial database: facts are beliefs, rules knowledge.
-                UseCase::Knowledge if self.gen == Generation::Marbel && !rule => {
+                // (B): the .pl file is the initial database: ground facts are beliefs (the
+                // program may delete them), rules and facts with variables are knowledge.
+                UseCase::Knowledge
+                    if self.gen == Generation::Marbel && !rule && c.term.vars().is_empty() =>
+                {
                     self.beliefs.push(c)
                 }
                 UseCase::Knowledge => self.knowledge.push(c),
@@ -373,13 +376,18 @@ impl Assembler<'_> {
             });
             ms.len() - 1
         };
-        if !self.beliefs.is_empty() || !self.goals.is_empty() {
+        let percepts = self.percept_rules();
+        // (B) percepts are stored before the init module runs, in the first cycle, too.
+        if !self.beliefs.is_empty() || !self.goals.is_empty() || !percepts.is_empty() {
             let i = by_kind("init", &mut modules, &agent_span);
             modules[i].beliefs.append(&mut self.beliefs);
             modules[i].goals.append(&mut self.goals);
+            if let Some(p) = modules[i].program.as_mut() {
+                p.rules.splice(0..0, percepts.iter().cloned());
+            }
         }
         let ev = by_kind("event", &mut modules, &agent_span);
-        let mut first = self.percept_rules();
+        let mut first = percepts;
         if let Some(p) = modules[ev].program.as_mut() {
             first.append(&mut p.rules);
             first.extend(clear_messages(&agent_span));
@@ -652,4 +660,50 @@ fn environment_actions(modules: &[Module], specs: &[ActionSpec], span: &Span) ->
         }
     }
     out
+}
+
+/// `:- dynamic p/1, q/2.` directives blanked out (same length, so spans stay right): GOAL's fixed
+/// operator table has no `dynamic` operator, and the directives only declare belief predicates.
+pub fn blank_dynamic(text: &str) -> String {
+    let b = text.as_bytes();
+    let mut walk = crate::syntax::lexer::kr::Significant::new(text, 0, text.len());
+    let mut blanks: Vec<Span> = Vec::new();
+    let (mut clause_start, mut depth, mut directive) = (true, 0i64, None);
+    while let Some(Ok((p, c))) = walk.next_byte() {
+        if clause_start && !c.is_ascii_whitespace() {
+            clause_start = false;
+            let rest = text[p..].strip_prefix(":-").map(str::trim_start);
+            if rest.is_some_and(|r| {
+                r.strip_prefix("dynamic")
+                    .is_some_and(|x| x.starts_with(|ch: char| ch.is_whitespace()))
+            }) {
+                directive = Some(p);
+            }
+        }
+        match c {
+            b'(' | b'[' | b'{' => depth += 1,
+            b')' | b']' | b'}' => depth -= 1,
+            b'.' if depth <= 0
+                && b.get(p + 1)
+                    .is_none_or(|n| n.is_ascii_whitespace() || *n == b'%') =>
+            {
+                if let Some(s) = directive.take() {
+                    blanks.push(s..p + 1);
+                }
+                clause_start = true;
+                depth = 0;
+            }
+            _ => {}
+        }
+    }
+    let mut out = text.as_bytes().to_vec();
+    for s in blanks {
+        for x in &mut out[s] {
+            if *x != b'\n' {
+                *x = b' ';
+            }
+        }
+    }
+    // Only ASCII bytes outside quotes were replaced by spaces: still UTF-8.
+    String::from_utf8(out).unwrap_or_else(|_| text.to_string())
 }

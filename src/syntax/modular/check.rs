@@ -39,7 +39,9 @@ pub fn check_agent(
         let mas_end = build.sources.segments[0].end;
         for d in crate::syntax::validate::validate(&build.program, None) {
             // What the lowering added points into the MAS file: its warnings are not the user's.
-            if d.span.start <= mas_end && !d.is_error() {
+            // `newpercept/1` (this cycle's raw percepts) is provided by the runtime.
+            let runtime = d.code == "E0121" && d.message.starts_with("`newpercept/1`");
+            if d.span.start <= mas_end && (!d.is_error() || runtime) {
                 continue;
             }
             // (B) a .pl file holds facts and rules of one predicate (database and knowledge).
@@ -272,7 +274,8 @@ pub fn check_act_file(path: &Path, text: &str) -> Vec<Diagnostic> {
 /// Checks a `.pl` file: `:- dynamic` directives are allowed (modular GOAL and MARBEL).
 pub fn check_pl_file(path: &Path, text: &str) -> Vec<Diagnostic> {
     let file = path.display().to_string();
-    let (clauses, mut diags) = Reader::new(file.as_str()).clauses(text, 0);
+    let text = super::assemble::blank_dynamic(text);
+    let (clauses, mut diags) = Reader::new(file.as_str()).clauses(&text, 0);
     let clauses = kr_clauses(clauses, &file, &mut diags);
     diags.extend(crate::syntax::validate::validate_prolog(&clauses, &file));
     diags

@@ -146,7 +146,6 @@ impl<'s> ModLexer<'s> {
         let start = self.pos;
         let mut walk = Significant::new(self.src, start, self.end);
         let mut depth = 0i64;
-        let mut last = start;
         while let Some(item) = walk.next_byte() {
             let (p, c) = match item {
                 Ok(x) => x,
@@ -165,11 +164,9 @@ impl<'s> ModLexer<'s> {
                 }
                 if matches!(&self.src[p..q], "then" | "do") {
                     self.pos = p;
-                    return Some((start, MTok::KrCond, last));
+                    let end = start + self.src[start..p].trim_end().len();
+                    return Some((start, MTok::KrCond, end));
                 }
-            }
-            if !c.is_ascii_whitespace() {
-                last = p + 1;
             }
         }
         self.stop(
