@@ -675,7 +675,10 @@ pub fn syntax_error(e: ParseError<usize, MTok, Diagnostic>, src: &str, file: &st
         ParseError::InvalidToken { location } => {
             Diagnostic::error("E0014", "invalid token", file, location..location + 1)
         }
-        ParseError::UnrecognizedEof { location, expected } => Diagnostic::error(
+        ParseError::UnrecognizedEof {
+            location,
+            ref expected,
+        } => Diagnostic::error(
             "E0015",
             format!(
                 "unexpected end of file, expected {}",
@@ -684,26 +687,50 @@ pub fn syntax_error(e: ParseError<usize, MTok, Diagnostic>, src: &str, file: &st
             file,
             location..location,
         )
-        .with_hint("a module or rule is not finished: check for a missing `}` or `.`"),
+        .with_hint(
+            hint(&expected)
+                .unwrap_or("a module or rule is not finished: check for a missing `}` or `.`"),
+        ),
         ParseError::UnrecognizedToken {
             token: (l, _, r),
             expected,
-        } => Diagnostic::error(
-            "E0014",
-            format!(
-                "unexpected {}, expected {}",
-                shown(src, l, r),
-                expected_list(&expected)
-            ),
-            file,
-            l..r,
-        ),
+        } => {
+            let d = Diagnostic::error(
+                "E0014",
+                format!(
+                    "unexpected {}, expected {}",
+                    shown(src, l, r),
+                    expected_list(&expected)
+                ),
+                file,
+                l..r,
+            );
+            match hint(&expected) {
+                Some(h) => d.with_hint(h),
+                None => d,
+            }
+        }
         ParseError::ExtraToken { token: (l, _, r) } => Diagnostic::error(
             "E0014",
             format!("unexpected {}", shown(src, l, r)),
             file,
             l..r,
         ),
+    }
+}
+
+fn hint(expected: &[String]) -> Option<&'static str> {
+    let has = |s: &str| expected.iter().any(|e| e.trim_matches('"') == s);
+    if has(".") && has("+") {
+        Some("end the rule with `.` (or join actions with `+`)")
+    } else if has("post+") && !has("post") {
+        Some("`post-{...}` is followed by `post+{...}`")
+    } else if has("then") || has("do") {
+        Some("a condition is followed by `then` (for `if`) or `do` (for `forall`/`listall`)")
+    } else if has("module") {
+        Some("a module file is: use clauses, options, macros, then `module name { rules }`")
+    } else {
+        None
     }
 }
 

@@ -37,6 +37,8 @@ pub struct ModLexer<'s> {
     raw_conditions: bool,
     /// Problems found (unexpected characters, unterminated quotes, ...).
     pub diagnostics: Vec<Diagnostic>,
+    /// True once input had to be abandoned (the parser's end-of-file error is then noise).
+    pub stopped_early: bool,
 }
 
 impl<'s> ModLexer<'s> {
@@ -51,12 +53,14 @@ impl<'s> ModLexer<'s> {
             depth: 0,
             raw_conditions,
             diagnostics: Vec::new(),
+            stopped_early: false,
         }
     }
 
     fn stop(&mut self, d: Diagnostic) -> Option<(usize, MTok, usize)> {
         self.diagnostics.push(d);
         self.pos = self.end;
+        self.stopped_early = true;
         None
     }
 

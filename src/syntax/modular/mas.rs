@@ -20,8 +20,10 @@ lalrpop_mod!(
 #[derive(Logos, Clone, Copy, Debug, PartialEq, Eq)]
 #[logos(skip r"[ \t\r\n\f]+")]
 #[logos(skip r"%[^\n]*")]
-#[logos(skip r"/\*([^*]|\*+[^*/])*\*+/")]
 pub enum MasTok {
+    /// A block comment (skipped; unterminated is a lexical error).
+    #[token("/*", block_comment)]
+    Comment,
     #[token("use")]
     Use,
     #[token("as")]
@@ -83,6 +85,19 @@ pub enum MasTok {
     Int,
     #[regex(r"-?[0-9]*\.[0-9]+([eE][+-]?[0-9]+)?")]
     Float,
+}
+
+fn block_comment(lex: &mut logos::Lexer<MasTok>) -> logos::FilterResult<(), ()> {
+    match lex.remainder().find("*/") {
+        Some(i) => {
+            lex.bump(i + 2);
+            logos::FilterResult::Skip
+        }
+        None => {
+            lex.bump(lex.remainder().len());
+            logos::FilterResult::Error(())
+        }
+    }
 }
 
 /// Deepest nesting of `(`/`[` in parameter values.
@@ -663,4 +678,62 @@ fn syntax_error(
         "a modular MAS file is: `use ... as environment with ... .`, then `define ... { ... }` \
          agent definitions, then `launchpolicy { ... }`",
     )
+}
+
+impl ModMas {
+    /// A compact, indented printed form for snapshots (spans as byte ranges).
+    pub fn dump(&self) -> String {
+        use std::fmt::Write;
+        let mut o = String::new();
+        let _ = writeln!(o, "mas {} ({})", self.file, self.generation.label());
+        if let Some(e) = &self.env {
+            let _ = writeln!(
+                o,
+                "  environment {:?} as_environment={} @{:?}",
+                e.reference.value, e.as_environment, e.span
+            );
+            for p in &e.params {
+                let v = crate::syntax::mas2g::ast::show(&p.value);
+                let _ = writeln!(o, "    {} = {v} @{:?}", p.key.value, p.span);
+            }
+        }
+        for a in &self.agents {
+            let form = if a.as_agent.is_some() {
+                "as agent"
+            } else {
+                "{}"
+            };
+            let _ = writeln!(o, "  define {} ({form}) @{:?}", a.name.value, a.span);
+            for i in &a.items {
+                let _ = match i {
+                    AgentItem::Use {
+                        reference,
+                        role,
+                        marbel,
+                        span,
+                    } => writeln!(
+                        o,
+                        "    use {:?} role={} {} @{span:?}",
+                        reference.value,
+                        role.value.keyword(),
+                        if *marbel { "(for)" } else { "(as)" }
+                    ),
+                    AgentItem::Percept {
+                        mode,
+                        name,
+                        arity,
+                        span,
+                    } => writeln!(o, "    {mode:?} {}/{arity} @{span:?}", name.value),
+                };
+            }
+        }
+        let classic = crate::syntax::mas2g::ast::MasFile {
+            launch_rules: self.launch.clone(),
+            ..Default::default()
+        };
+        for line in classic.dump().lines().skip(1) {
+            let _ = writeln!(o, "{line}");
+        }
+        o
+    }
 }

@@ -53,6 +53,10 @@ pub fn parse_mod2g(
             None
         }
     };
+    if lexer.stopped_early {
+        // The parser's complaints about the abandoned end of the file are noise.
+        diags.retain(|d| d.code != "E0015");
+    }
     diags.extend(lexer.diagnostics);
     diags.sort_by_key(|d| (d.span.start, d.span.end));
     (parsed, diags)
@@ -81,6 +85,10 @@ pub fn parse_act2g(
             None
         }
     };
+    if lexer.stopped_early {
+        // The parser's complaints about the abandoned end of the file are noise.
+        diags.retain(|d| d.code != "E0015");
+    }
     diags.extend(lexer.diagnostics);
     diags.sort_by_key(|d| (d.span.start, d.span.end));
     (parsed, diags)
