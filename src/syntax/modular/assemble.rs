@@ -195,6 +195,28 @@ impl Assembler<'_> {
             return;
         };
         let marbel = self.gen == Generation::Marbel;
+        let dir = path.parent().unwrap_or(Path::new("."));
+        let written = super::detect::module_generation(&self.sources.text[start..end], dir);
+        let mismatch = written == Generation::Classic
+            || (written == Generation::Marbel && self.gen == Generation::Modular);
+        if mismatch {
+            let d = Diagnostic::error(
+                "E0611",
+                format!(
+                    "`{name}` is a {} module, but the MAS file is {}",
+                    written.label(),
+                    self.gen.label()
+                ),
+                self.sources.segments[0].name.clone(),
+                span,
+            )
+            .with_hint(match written {
+                Generation::Classic => "a 2014 module (with `program { }` sections) is imported by a `.goal` file with `#import`",
+                _ => "write the conditions with mental operators (`bel(..)`, `percept(..)`), or use a MARBEL MAS file (`define a { use m for decisions. }`)",
+            });
+            self.diags.push(d);
+            return;
+        }
         let (file, diags) = super::parse_mod2g(&name, &self.sources.text, start, end, marbel);
         self.diags.extend(diags);
         let Some(file) = file else { return };

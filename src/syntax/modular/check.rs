@@ -41,7 +41,12 @@ pub fn check_agent(
             // What the lowering added points into the MAS file: its warnings are not the user's.
             // `newpercept/1` (this cycle's raw percepts) is provided by the runtime.
             let runtime = d.code == "E0121" && d.message.starts_with("`newpercept/1`");
-            if d.span.start <= mas_end && (!d.is_error() || runtime) {
+            // Unsupported actions are reported once, as such (not as undefined actions).
+            let unsupported = build
+                .unsupported
+                .iter()
+                .any(|(_, s)| s.start <= d.span.start && d.span.end <= s.end);
+            if runtime || unsupported || (d.span.start <= mas_end && !d.is_error()) {
                 continue;
             }
             // (B) a .pl file holds facts and rules of one predicate (database and knowledge).
