@@ -89,3 +89,22 @@ fn generations_play_the_same_game() {
     assert_eq!(a["ticks"], b["ticks"]);
     assert_eq!(a["messages"], b["messages"]);
 }
+
+/// `goal test` on the shipped test files of both teams: every robot's test passes, and the
+/// reports (agent, test, outcome) are snapshotted.
+#[test]
+fn shipped_team_tests_pass() {
+    use goal::testing::runner::{run_file, TestOptions};
+    let mut lines = Vec::new();
+    for team in ["modular", "marbel"] {
+        let file = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("agents/bw4t")
+            .join(team)
+            .join("team.test2g");
+        for r in run_file(&file, &TestOptions::default()) {
+            assert_eq!(r.outcome, goal::testing::Outcome::Passed, "{}", r.to_text());
+            lines.push(format!("{team} {}/{} {:?}", r.agent, r.test, r.outcome));
+        }
+    }
+    insta::assert_snapshot!(lines.join("\n"));
+}

@@ -737,3 +737,21 @@ impl ModMas {
         o
     }
 }
+
+/// For a modular `.mas2g` text: its launch rules as a 2014 [`MasFile`] (what test files need
+/// to know which agents a system launches) and its diagnostics; `None` for a 2014 MAS text.
+pub fn classic_launch(
+    text: &str,
+    file: &str,
+) -> Option<(crate::syntax::mas2g::ast::MasFile, Vec<Diagnostic>)> {
+    if super::detect::mas_generation(text) == Generation::Classic {
+        return None;
+    }
+    let (m, diags) = parse(text, file);
+    let mas = crate::syntax::mas2g::ast::MasFile {
+        file: file.to_string(),
+        launch_rules: m.launch,
+        ..Default::default()
+    };
+    Some((mas, diags))
+}
