@@ -444,3 +444,38 @@ fn unsupported_actions_stop_loading_with_an_error() {
     assert_eq!(p[0].diagnostic.code, "E0600");
     assert!(p[0].diagnostic.file.ends_with("main.mod2g"));
 }
+
+#[test]
+fn modular_test_files_watch_the_tested_module() {
+    use goal::testing::runner::{run_file, TestOptions};
+    use goal::testing::Outcome;
+    let mas = "define r as agent { use main as main module. }\nlaunchpolicy { launch r. }";
+    let main = "use k as beliefs. module main {
+        if bel(count(N), N < 3, M is N + 1) then delete(count(N)) + insert(count(M)).
+        if bel(count(3)) then exit-module. }";
+    let test = |cond: &str| {
+        format!(
+            "use team as mas.\ntimeout = 10.\ntest main with\n pre {{ bel(count(0)) }}\n in {{ {cond}. \
+             done(insert(count(2))) leadsto bel(count(2)). }}\n post {{ bel(count(3)) }}\nr {{ do main. }}\n"
+        )
+    };
+    let dir = project(
+        "test2g",
+        &[
+            ("team.mas2g", mas),
+            ("main.mod2g", main),
+            ("k.pl", "count(0).\n"),
+            ("pass.test2g", &test("eventually bel(count(3))")),
+            ("fail.test2g", &test("never bel(count(2))")),
+        ],
+    );
+    let pass = run_file(&dir.join("pass.test2g"), &TestOptions::default());
+    assert_eq!(pass.len(), 1);
+    assert_eq!(pass[0].outcome, Outcome::Passed, "{}", pass[0].to_text());
+    let fail = run_file(&dir.join("fail.test2g"), &TestOptions::default());
+    assert!(
+        matches!(fail[0].outcome, Outcome::Failed(_)),
+        "{}",
+        fail[0].to_text()
+    );
+}

@@ -18,7 +18,13 @@ fn fixture(path: &str) -> (String, String) {
 fn ast(path: &str) -> String {
     let (file, text) = fixture(path);
     let marbel = path.starts_with("b/");
-    let (out, diags) = if path.ends_with(".mas2g") {
+    let (out, diags) = if path.ends_with(".test2g") {
+        let (t, d) = goal::syntax::test2g::parse(&text, &file);
+        (
+            goal::syntax::test2g::dump::mas_test(&t.expect("parsed"), &text),
+            d,
+        )
+    } else if path.ends_with(".mas2g") {
         let (m, d) = mas::parse(&text, &file);
         (m.dump(), d)
     } else if path.ends_with(".act2g") {
@@ -91,6 +97,7 @@ construct!(a_literals_and_selectors, "a/literals.mod2g");
 construct!(a_actions, "a/actions.mod2g");
 construct!(a_action_specifications, "a/specs.act2g");
 construct!(a_mas, "a/team.mas2g");
+construct!(a_tests, "a/tests.test2g");
 construct!(b_mas, "b/team.mas2g");
 construct!(b_plain_literal_conditions, "b/conditions.mod2g");
 

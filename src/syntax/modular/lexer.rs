@@ -39,6 +39,8 @@ pub struct ModLexer<'s> {
     pub diagnostics: Vec<Diagnostic>,
     /// True once input had to be abandoned (the parser's end-of-file error is then noise).
     pub stopped_early: bool,
+    /// An (A) test file: the test keywords are recognised.
+    pub test_file: bool,
 }
 
 impl<'s> ModLexer<'s> {
@@ -54,6 +56,7 @@ impl<'s> ModLexer<'s> {
             raw_conditions,
             diagnostics: Vec::new(),
             stopped_early: false,
+            test_file: false,
         }
     }
 
@@ -242,6 +245,10 @@ impl<'s> ModLexer<'s> {
 
     fn classify(&mut self, start: usize, t: MTok, end: usize) -> Option<(usize, MTok, usize)> {
         let b = self.src.as_bytes();
+        let t = match MTok::test_keyword(&self.src[start..end]) {
+            Some(k) if self.test_file && t == MTok::Ident => k,
+            _ => t,
+        };
         if t == MTok::Ident
             && b.get(end) == Some(&b'.')
             && end + 1 < self.end
@@ -255,7 +262,7 @@ impl<'s> ModLexer<'s> {
             After::KrParens
         } else if t.takes_kr_braces() {
             After::KrBraces
-        } else if t == MTok::Not {
+        } else if t == MTok::Not || t == MTok::Done {
             After::Not
         } else if t == MTok::Listall {
             After::Listall

@@ -13,6 +13,7 @@ pub mod detect;
 pub mod lexer;
 pub mod mas;
 pub mod sources;
+pub mod test2g;
 pub mod token;
 
 use crate::diag::Diagnostic;

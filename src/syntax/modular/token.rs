@@ -167,6 +167,33 @@ pub enum MTok {
     ListallVar,
     /// (B) a condition taken raw: from after `if`/`forall`/`<-` up to `then`/`do`.
     KrCond,
+    /// Keywords of (A) test files only (names elsewhere): `test`, `in`, `always`, `never`,
+    /// `eventually`, `leadsto`, `done`, `until`.
+    Test,
+    In,
+    Always,
+    Never,
+    Eventually,
+    LeadsTo,
+    Done,
+    Until,
+}
+
+impl MTok {
+    /// In a test file, the test keyword a name stands for.
+    pub(crate) fn test_keyword(text: &str) -> Option<MTok> {
+        Some(match text {
+            "test" => MTok::Test,
+            "in" => MTok::In,
+            "always" => MTok::Always,
+            "never" => MTok::Never,
+            "eventually" => MTok::Eventually,
+            "leadsto" => MTok::LeadsTo,
+            "done" => MTok::Done,
+            "until" => MTok::Until,
+            _ => return None,
+        })
+    }
 }
 
 impl MTok {
