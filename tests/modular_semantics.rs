@@ -479,3 +479,38 @@ fn modular_test_files_watch_the_tested_module() {
         fail[0].to_text()
     );
 }
+
+#[test]
+fn files_checked_on_their_own() {
+    let dir = project(
+        "alone",
+        &[
+            ("db.pl", ":- dynamic seen/1.\n:- initialization(main).\nroom(r1).\n"),
+            ("control.mod2g", "use db. module control { if room(R), \\+ seen(R) then goTo(R). }"),
+            ("acts.act2g", "define goTo(R) with pre { true } post { at(R) }\ndefine goTo(R) with pre { true } post { at(R) }\n"),
+            ("main.mod2g", "use db as knowledge. module main { if room(R) then goTo(R). }"),
+        ],
+    );
+    let codes = |f: &str| -> Vec<String> {
+        check_path_with_agents(&dir.join(f))
+            .iter()
+            .flat_map(|r| r.diagnostics.iter().map(|d| d.code.clone()))
+            .collect()
+    };
+    // `:- dynamic` is accepted; other directives are ignored with a warning.
+    assert_eq!(codes("db.pl"), ["W0605"]);
+    // A bare `use` of a .pl file: a MARBEL module, plain literals are fine.
+    assert_eq!(codes("control.mod2g"), Vec::<String>::new());
+    // The same spec twice is an error.
+    assert!(
+        codes("acts.act2g").contains(&"E0103".to_string()),
+        "{:?}",
+        codes("acts.act2g")
+    );
+    // In modular GOAL a plain literal is the use of a macro, which is not defined.
+    assert!(
+        codes("main.mod2g").contains(&"E0118".to_string()),
+        "{:?}",
+        codes("main.mod2g")
+    );
+}

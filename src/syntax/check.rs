@@ -179,12 +179,14 @@ pub fn check_dir(dir: &Path) -> Vec<FileReport> {
     if mas.is_empty() {
         let file = dir.display().to_string();
         let d = Diagnostic::error(
-            "E0024",
-            format!("no .mas2g file in `{file}`"),
+            "E0017",
+            format!("`{file}` is a directory with no .mas2g file to check"),
             file.clone(),
             0..0,
         )
-        .with_hint("give the directory of a project, or the files to check");
+        .with_hint(
+            "give the directory of a project (with its .mas2g files), or the files to check",
+        );
         return vec![FileReport {
             file,
             source: String::new(),

@@ -237,10 +237,55 @@ pub fn check_module_file(path: &Path, text: &str, gen: Generation) -> Vec<Diagno
             .with_hint("`goal run` stops with an error at load time"),
         );
     }
+    if gen == Generation::Modular {
+        diags.extend(undefined_macros(&m.module, &file));
+    }
     diags.extend(crate::syntax::validate::validate_module_file(
         &m.module, &file, None,
     ));
     diags
+}
+
+/// E0118 for macro uses with no definition in the file: macros are local to their file in
+/// modular GOAL, so this needs no other file; a plain Prolog literal lands here.
+fn undefined_macros(m: &Module, file: &str) -> Vec<Diagnostic> {
+    use crate::syntax::ast::{LiteralKind, RuleBody};
+    let Some(p) = &m.program else {
+        return Vec::new();
+    };
+    let defined: Vec<(String, usize)> = p
+        .macros
+        .iter()
+        .map(|d| (d.name.name.name().to_string(), d.params.len()))
+        .collect();
+    let mut out = Vec::new();
+    let mut stack: Vec<&crate::syntax::ast::Rule> = p.rules.iter().collect();
+    while let Some(r) = stack.pop() {
+        if let RuleBody::Block(rs) = &r.body {
+            stack.extend(rs.iter());
+        }
+        for l in &r.condition {
+            if let LiteralKind::MacroUse { name, args } = &l.kind {
+                let key = (name.name.name().to_string(), args.len());
+                if !defined.contains(&key) {
+                    out.push(
+                        Diagnostic::error(
+                            "E0118",
+                            format!("macro `{}/{}` is not defined in this file", key.0, key.1),
+                            file,
+                            l.span.clone(),
+                        )
+                        .with_hint(format!(
+                            "conditions use mental operators (`bel({0}(...))`, `percept({0}(...))`); plain Prolog literals are MARBEL",
+                            key.0
+                        )),
+                    );
+                }
+            }
+        }
+    }
+    out.sort_by_key(|d| d.span.start);
+    out
 }
 
 /// Checks an `.act2g` file on its own.
@@ -249,8 +294,9 @@ pub fn check_act_file(path: &Path, text: &str) -> Vec<Diagnostic> {
     let (parsed, mut diags) = super::parse_act2g(&file, text, 0, text.len());
     let Some(a) = parsed else { return diags };
     let span = 0..text.len();
+    // An init module may have no rules: the specs are checked on their own.
     let module = Module {
-        kind: ModuleKind::Event,
+        kind: ModuleKind::Init,
         options: ModuleOptions::default(),
         knowledge: Vec::new(),
         beliefs: Vec::new(),
