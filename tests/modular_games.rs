@@ -108,3 +108,69 @@ fn shipped_team_tests_pass() {
     }
     insta::assert_snapshot!(lines.join("\n"));
 }
+
+/// A golden trace of a modular system: deterministic, and its rule labels name lines of the
+/// module files (not of the text the files were assembled in).
+#[test]
+fn modular_trace_is_golden() {
+    use goal::testing::golden::{compare, record};
+    std::env::set_current_dir(env!("CARGO_MANIFEST_DIR")).expect("manifest dir");
+    let path = std::path::Path::new("tests/fixtures/modular/pingpong/pingpong.mas2g");
+    let sys = load_mas(path).unwrap_or_else(|p| panic!("{}", p[0].render()));
+    let opts = RunOptions {
+        workers: 2,
+        ..RunOptions::default()
+    };
+    let trace = record(&sys, &opts).expect("runs");
+    assert_eq!(compare(&trace, &record(&sys, &opts).expect("runs")), None);
+    assert!(
+        trace.contains("\"rule\":\"event:2\""),
+        "labels are lines of the module file"
+    );
+    insta::assert_snapshot!("modular_pingpong_trace", trace);
+}
+
+/// `goal check`, `goal run` and `goal test` on modular systems through the binary.
+#[test]
+fn the_binary_checks_runs_and_tests_modular_systems() {
+    use std::process::Command;
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let goal = env!("CARGO_BIN_EXE_goal");
+    let out = Command::new(goal)
+        .args(["check", "agents/bw4t/modular", "agents/bw4t/marbel"])
+        .current_dir(&root)
+        .output()
+        .expect("runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("0 errors, 0 warnings"), "{stderr}");
+    let out = Command::new(goal)
+        .args(["run", "tests/fixtures/modular/pingpong/pingpong.mas2g"])
+        .current_dir(&root)
+        .output()
+        .expect("runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("messages    6"), "{stderr}");
+    // A module with an error: exit code 1 and the file, line and column of the problem.
+    let dir = std::env::temp_dir().join(format!("goal-modular-cli-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("dir");
+    std::fs::write(
+        dir.join("team.mas2g"),
+        "define a as agent { use m as main module. }\nlaunchpolicy { launch a. }\n",
+    )
+    .expect("write");
+    std::fs::write(
+        dir.join("m.mod2g"),
+        "module m {\n  if bel(x) then fly.\n}\n",
+    )
+    .expect("write");
+    let out = Command::new(goal)
+        .args(["run", &dir.join("team.mas2g").display().to_string()])
+        .output()
+        .expect("runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("m.mod2g:2:18"), "{stderr}");
+}

@@ -156,14 +156,25 @@ fn main_file(sources: &SourceSet, prog: &Program) -> String {
 
 /// Line numbers of the compiled program (lines of the shared text) as lines of their own files.
 fn localize_lines(p: &mut Program, sources: &SourceSet) {
+    let mas_file = sources.segments[0].name.as_str();
     for m in &mut p.modules {
         m.line = sources.local_line(m.line).1;
     }
     for b in &mut p.blocks {
         for r in &mut b.rules {
             let module = r.label.rsplit_once(':').map_or("", |(m, _)| m).to_string();
-            r.line = sources.local_line(r.line).1;
-            r.label = format!("{module}:{}", r.line).into();
+            let (file, line) = sources.local_line(r.line);
+            r.line = line;
+            // Rules the lowering added point into the MAS file: say so in their label.
+            r.label = if file == mas_file {
+                let base = Path::new(file)
+                    .file_name()
+                    .and_then(|f| f.to_str())
+                    .unwrap_or(file);
+                format!("{module}:{base}:{line}").into()
+            } else {
+                format!("{module}:{line}").into()
+            };
             if let crate::agent::program::Body::Combo(actions) = &mut r.body {
                 for a in actions {
                     a.line = sources.local_line(a.line).1;
