@@ -485,7 +485,7 @@ fn files_checked_on_their_own() {
     let dir = project(
         "alone",
         &[
-            ("db.pl", ":- dynamic seen/1.\n:- initialization(main).\nroom(r1).\n"),
+            ("db.pl", ":- dynamic seen/1.\nvisited/1.\n:- initialization(main).\nroom(r1).\n"),
             ("control.mod2g", "use db. module control { if room(R), \\+ seen(R) then goTo(R). }"),
             ("acts.act2g", "define goTo(R) with pre { true } post { at(R) }\ndefine goTo(R) with pre { true } post { at(R) }\n"),
             ("main.mod2g", "use db as knowledge. module main { if room(R) then goTo(R). }"),
@@ -498,7 +498,8 @@ fn files_checked_on_their_own() {
             .collect()
     };
     // `:- dynamic` is accepted; other directives are ignored with a warning.
-    assert_eq!(codes("db.pl"), ["W0605"]);
+    // A line `p/1.` after it is a fact with a warning (a dot where a comma was meant).
+    assert_eq!(codes("db.pl"), ["W0609", "W0605"]);
     // A bare `use` of a .pl file: a MARBEL module, plain literals are fine.
     assert_eq!(codes("control.mod2g"), Vec::<String>::new());
     // The same spec twice is an error.
@@ -513,4 +514,32 @@ fn files_checked_on_their_own() {
         "{:?}",
         codes("main.mod2g")
     );
+}
+
+#[test]
+fn marbel_goal_literal_reads_a_goal_predicate_of_the_database() {
+    let dir = project(
+        "goalpred",
+        &[
+            ("team.mas2g", B_MAS),
+            ("db.pl", "goal(deliver).\n"),
+            (
+                "control.mod2g",
+                "use db. module control { if goal(X) then print(X) + exit-module. }",
+            ),
+            (
+                "update.mod2g",
+                "module update { if true then insert(updated). }",
+            ),
+        ],
+    );
+    let sys = load_mas(&dir.join("team.mas2g")).expect("loads");
+    let w: Vec<&str> = sys
+        .warnings
+        .iter()
+        .map(|p| p.diagnostic.code.as_str())
+        .collect();
+    assert_eq!(w, ["W0610"]);
+    let mut a = agent(&dir, "r");
+    assert_eq!(step(&mut a, &[], &[]).printed, ["deliver"]);
 }

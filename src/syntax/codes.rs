@@ -117,6 +117,8 @@ pub const CODES: &[(&str, &str)] = &[
     ("W0606", "an action this runtime cannot run yet (reported by goal check)"),
     ("W0607", "a launch rule for an entity type BW4T never has"),
     ("W0608", "a BW4T client init parameter the built-in environment ignores"),
+    ("W0609", "a `.pl` line `p/1.` that looks like a declaration cut off by `.`"),
+    ("W0610", "a MARBEL `goal(..)` literal reads the database's goal/1 predicate"),
 ];
 
 /// The meaning of a code, if it is known.

@@ -398,6 +398,9 @@ impl Assembler<'_> {
             });
             ms.len() - 1
         };
+        if self.gen == Generation::Marbel {
+            self.goal_predicate(&mut modules);
+        }
         let percepts = self.percept_rules();
         // (B) percepts are stored before the init module runs, in the first cycle, too.
         if !self.beliefs.is_empty() || !self.goals.is_empty() || !percepts.is_empty() {
@@ -434,6 +437,58 @@ impl Assembler<'_> {
             sources: self.sources,
             diagnostics: self.diags,
             unsupported,
+        }
+    }
+
+    /// (B) when the database defines `goal/1`, a `goal(..)` literal queries that predicate
+    /// (MARBEL has no goals of its own in the course programs); a warning says so once.
+    fn goal_predicate(&mut self, modules: &mut [Module]) {
+        let defines = self.knowledge.iter().chain(self.beliefs.iter()).any(|c| {
+            let head = match c.term.functor() {
+                Some((f, 2)) if f.name() == ":-" => &c.term.args()[0],
+                _ => &c.term,
+            };
+            matches!(head.functor(), Some((f, 1)) if f.name() == "goal")
+        });
+        if !defines {
+            return;
+        }
+        let mut first: Option<Span> = None;
+        for m in modules.iter_mut() {
+            let Some(p) = m.program.as_mut() else {
+                continue;
+            };
+            let mut stack: Vec<&mut Rule> = p.rules.iter_mut().collect();
+            while let Some(r) = stack.pop() {
+                for l in r.condition.iter_mut() {
+                    if let LiteralKind::Mental { op, query, .. } = &mut l.kind {
+                        if *op == MentalOp::Goal {
+                            *op = MentalOp::Bel;
+                            let t = Term::compound("goal", vec![query.term.clone()]);
+                            *query = located(t, query.spans.span.clone());
+                            first.get_or_insert(l.span.clone());
+                        }
+                    }
+                }
+                if let RuleBody::Block(rs) = &mut r.body {
+                    stack.extend(rs.iter_mut());
+                }
+            }
+        }
+        if let Some(span) = first {
+            let file = self
+                .sources
+                .segment_of(span.start)
+                .map_or(String::new(), |s| s.name.clone());
+            self.diags.push(
+                Diagnostic::warning(
+                    "W0610",
+                    "`goal(..)` queries the predicate goal/1 of the database",
+                    file,
+                    span,
+                )
+                .with_hint("the .pl files define goal/1; rename it to use the goal operator"),
+            );
         }
     }
 
@@ -508,6 +563,24 @@ pub fn kr_clauses(clauses: Vec<Located>, file: &str, diags: &mut Vec<Diagnostic>
                         .with_hint("remove the directive"),
                     );
                 }
+            }
+            Some((f, 2))
+                if f.name() == "/"
+                    && matches!(c.term.args()[0], Term::Atom(_))
+                    && matches!(c.term.args()[1], Term::Int(_)) =>
+            {
+                // `:- dynamic a/1.` followed by `b/2.`: a dot where a comma was meant. The
+                // line is a fact of '/'/2 (as in SWI-Prolog); say what it probably meant.
+                diags.push(
+                    Diagnostic::warning(
+                        "W0609",
+                        format!("`{}` looks like a declaration cut off by `.`", c.term),
+                        file,
+                        c.spans.span.clone(),
+                    )
+                    .with_hint("end the line before with `,` to declare it, or remove it"),
+                );
+                out.push(c)
             }
             _ => out.push(c),
         }
