@@ -357,7 +357,7 @@ fn goal_check_reports_each_problem_in_its_own_file() {
             ("main.mod2g", "module main { if bel(a) then fly(1). }"),
             (
                 "events.mod2g",
-                "use missing as knowledge. module events { if true then exit-module. }",
+                "use missing as knowledge. use init as module. use init as module.\nmodule events { if true then exit-module. }",
             ),
         ],
     );
@@ -379,8 +379,17 @@ fn goal_check_reports_each_problem_in_its_own_file() {
         problems.contains(&("events.mod2g".into(), "E0607".into())),
         "{problems:?}"
     );
+    assert!(
+        problems.contains(&("events.mod2g".into(), "E0612".into())),
+        "{problems:?}"
+    );
     // Fix the missing file: the undefined action is reported in main.mod2g.
     std::fs::write(dir.join("missing.pl"), "a.\n").expect("write");
+    std::fs::write(
+        dir.join("events.mod2g"),
+        "use missing as knowledge. module events { if true then exit-module. }",
+    )
+    .expect("write");
     let reports = check_path_with_agents(&dir);
     let main = reports
         .iter()

@@ -81,6 +81,7 @@ pub const CODES: &[(&str, &str)] = &[
     ("E0609", "a rule in a file used as beliefs or goals"),
     ("E0610", "a MARBEL percept declared twice in one agent"),
     ("E0611", "a module file of another generation than its MAS file"),
+    ("E0612", "one file named twice by the use clauses of one file"),
     ("W0001", "duplicate section: only the first one is used"),
     ("W0002", "legacy send form (`bob.send(p)` or `send(bob, p)`)"),
     ("W0003", "unknown module option (ignored)"),

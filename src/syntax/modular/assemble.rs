@@ -224,6 +224,7 @@ impl Assembler<'_> {
         let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
         let uses = file.uses.clone();
         self.loaded.push(Loaded { role, file });
+        self.duplicate_uses(&dir, &uses);
         for u in &uses {
             self.use_clause(&dir, u, true);
         }
@@ -279,6 +280,40 @@ impl Assembler<'_> {
                             self.error("E0607", format!("`{}` not found", r.value), span, hint)
                         }
                     }
+                }
+            }
+        }
+    }
+
+    /// E0612: one file named twice by the use clauses of one file.
+    fn duplicate_uses(&mut self, dir: &Path, uses: &[UseClause]) {
+        let mut seen: BTreeSet<PathBuf> = BTreeSet::new();
+        for u in uses {
+            let exts: &[&str] = match u.case.as_ref().map(|c| c.value) {
+                Some(UseCase::Knowledge | UseCase::Beliefs | UseCase::Goals) => &["pl"],
+                Some(UseCase::Module) => &["mod2g"],
+                Some(UseCase::ActionSpec) => &["act2g"],
+                Some(UseCase::Mas | UseCase::Planner) => continue,
+                None => &["mod2g", "act2g", "mas2g", "pl"],
+            };
+            for r in &u.refs {
+                let Some(p) = resolve(dir, &r.value, exts) else {
+                    continue;
+                };
+                if !seen.insert(canonical(&p)) {
+                    let file = self
+                        .sources
+                        .segment_of(r.span.start)
+                        .map_or(String::new(), |s| s.name.clone());
+                    self.diags.push(
+                        Diagnostic::error(
+                            "E0612",
+                            format!("`{}` is used twice in this file", r.value),
+                            file,
+                            r.span.clone(),
+                        )
+                        .with_hint("remove one of the use clauses"),
+                    );
                 }
             }
         }
