@@ -560,13 +560,18 @@ fn load_time_errors_and_bw4t_parameter_notes() {
         "loaderrors",
         &[
             ("team.mas2g", A_MAS),
-            ("init.mod2g", "use b as beliefs. module init { if true then exit-module. }"),
+            (
+                "init.mod2g",
+                "use b as beliefs. module init { if true then exit-module. }",
+            ),
             ("b.pl", "p :- q.\n"),
             ("main.mod2g", IDLE_MAIN),
             ("events.mod2g", EMPTY_EVENTS),
         ],
     );
-    let p = load_mas(&dir.join("team.mas2g")).err().expect("does not load");
+    let p = load_mas(&dir.join("team.mas2g"))
+        .err()
+        .expect("does not load");
     assert_eq!(p[0].diagnostic.code, "E0609");
     let twice = "use \"bw4t.jar\" with agentcount = \"1\".
 define r { use control for decisions. replace in/1. update in/1. }
@@ -575,24 +580,33 @@ launchpolicy { when * launch r. }";
         "twice",
         &[
             ("team.mas2g", twice),
-            ("control.mod2g", "module control { if in(x) then exit-module. }"),
+            (
+                "control.mod2g",
+                "module control { if in(x) then exit-module. }",
+            ),
         ],
     );
-    let p = load_mas(&dir.join("team.mas2g")).err().expect("does not load");
+    let p = load_mas(&dir.join("team.mas2g"))
+        .err()
+        .expect("does not load");
     assert_eq!(p[0].diagnostic.code, "E0610");
     // Client parameters the built-in BW4T does not use, and an entity type it never has.
     let notes = "use \"BW4TClient.jar\" as environment with Map = \"Rainbow\", agentcount = \"2\", speed = \"20\", humancount = \"1\", clientip = \"localhost\".
 define r as agent { use main as main module. }
 launchpolicy { when type = robot launch r. }";
-    let dir = project(
-        "notes",
-        &[("team.mas2g", notes), ("main.mod2g", IDLE_MAIN)],
-    );
+    let dir = project("notes", &[("team.mas2g", notes), ("main.mod2g", IDLE_MAIN)]);
     let sys = load_mas(&dir.join("team.mas2g")).expect("loads");
-    let w: Vec<&str> = sys.warnings.iter().map(|p| p.diagnostic.code.as_str()).collect();
+    let w: Vec<&str> = sys
+        .warnings
+        .iter()
+        .map(|p| p.diagnostic.code.as_str())
+        .collect();
     assert_eq!(w, ["W0608", "W0608"], "speed and humancount");
     let env = sys.env.expect("the built-in BW4T");
-    assert_eq!(env.get("map").map(|t| t.to_string()), Some("\"rainbow\"".into()));
+    assert_eq!(
+        env.get("map").map(|t| t.to_string()),
+        Some("\"rainbow\"".into())
+    );
     assert_eq!(env.get("robots").map(|t| t.to_string()), Some("2".into()));
     assert!(!env.contains_key("clientip"));
     let codes: Vec<String> = check_path_with_agents(&dir.join("team.mas2g"))[0]
@@ -601,4 +615,43 @@ launchpolicy { when type = robot launch r. }";
         .map(|d| d.code.clone())
         .collect();
     assert!(codes.contains(&"W0607".to_string()), "{codes:?}");
+}
+
+#[test]
+fn macros_are_local_to_their_file() {
+    let mut a = a_project(
+        "macros",
+        "use b as beliefs. module init { if true then exit-module. }",
+        "use helper as module.
+         define ready as bel(x).
+         module main { if ready then helper + exit-module. }",
+        EMPTY_EVENTS,
+        &[
+            ("b.pl", "x.\ny.\n"),
+            (
+                "helper.mod2g",
+                "define ready as bel(y). exit = always.
+                 module helper { if ready then print(helper_ready). }",
+            ),
+        ],
+    );
+    assert_eq!(step(&mut a, &[], &[]).printed, ["helper_ready"]);
+    // The same name in both files: each file's own definition counts.
+    let mut b = a_project(
+        "macros2",
+        "use b as beliefs. module init { if true then exit-module. }",
+        "use helper as module.
+         define ready as bel(x).
+         module main { if ready then helper + exit-module. }",
+        EMPTY_EVENTS,
+        &[
+            ("b.pl", "x.\n"),
+            (
+                "helper.mod2g",
+                "define ready as bel(\\+ x). exit = always.
+                 module helper { if ready then print(wrong). if true then print(own_macro). }",
+            ),
+        ],
+    );
+    assert_eq!(step(&mut b, &[], &[]).printed, ["own_macro"]);
 }

@@ -433,6 +433,7 @@ impl Assembler<'_> {
             });
             ms.len() - 1
         };
+        local_macros(&mut modules);
         if self.gen == Generation::Marbel {
             self.goal_predicate(&mut modules);
         }
@@ -836,4 +837,52 @@ pub fn blank_dynamic(text: &str) -> String {
     }
     // Only ASCII bytes outside quotes were replaced by spaces: still UTF-8.
     String::from_utf8(out).unwrap_or_else(|_| text.to_string())
+}
+
+/// Macros are local to their file, but the 2014 compiler keeps one macro per name/arity: a
+/// macro whose name/arity an earlier file defines too is renamed `name'module` in its file
+/// (definition and uses), so each file keeps its own.
+fn local_macros(modules: &mut [Module]) {
+    let mut seen: BTreeSet<(String, usize)> = BTreeSet::new();
+    for m in modules.iter_mut() {
+        let module = m.name().to_string();
+        let Some(p) = m.program.as_mut() else {
+            continue;
+        };
+        let mut clash: BTreeMap<(String, usize), Sym> = BTreeMap::new();
+        for d in &p.macros {
+            let key = (d.name.name.name().to_string(), d.params.len());
+            if seen.contains(&key) {
+                clash.insert(key.clone(), Sym::intern(&format!("{}'{module}", key.0)));
+            }
+        }
+        seen.extend(
+            p.macros
+                .iter()
+                .map(|d| (d.name.name.name().to_string(), d.params.len())),
+        );
+        if clash.is_empty() {
+            continue;
+        }
+        let rename = |l: &mut Literal| {
+            if let LiteralKind::MacroUse { name, args } = &mut l.kind {
+                if let Some(n) = clash.get(&(name.name.name().to_string(), args.len())) {
+                    name.name = *n;
+                }
+            }
+        };
+        for d in p.macros.iter_mut() {
+            if let Some(n) = clash.get(&(d.name.name.name().to_string(), d.params.len())) {
+                d.name.name = *n;
+            }
+            d.body.iter_mut().for_each(rename);
+        }
+        let mut stack: Vec<&mut Rule> = p.rules.iter_mut().collect();
+        while let Some(r) = stack.pop() {
+            r.condition.iter_mut().for_each(rename);
+            if let RuleBody::Block(rs) = &mut r.body {
+                stack.extend(rs.iter_mut());
+            }
+        }
+    }
 }
