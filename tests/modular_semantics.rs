@@ -8,7 +8,7 @@ use goal::mas::system::load_mas;
 use goal::syntax::check::check_path_with_agents;
 use goal::syntax::prolog::Reader;
 use goal::term::Term;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Writes a project into a fresh directory named after the test.
 fn project(name: &str, files: &[(&str, &str)]) -> PathBuf {
@@ -22,7 +22,7 @@ fn project(name: &str, files: &[(&str, &str)]) -> PathBuf {
 }
 
 /// Agent `a` of definition `def` in the project's `team.mas2g`.
-fn agent(dir: &PathBuf, def: &str) -> Agent {
+fn agent(dir: &Path, def: &str) -> Agent {
     let sys = load_mas(&dir.join("team.mas2g")).unwrap_or_else(|p| {
         panic!(
             "{}",
@@ -422,9 +422,7 @@ fn a_module_of_another_generation_is_a_clear_error() {
             ("events.mod2g", EMPTY_EVENTS),
         ],
     );
-    let p = load_mas(&dir.join("team.mas2g"))
-        .err()
-        .expect("does not load");
+    let p = load_mas(&dir.join("team.mas2g")).expect_err("does not load");
     let msgs: Vec<String> = p.iter().map(|p| p.diagnostic.message.clone()).collect();
     assert!(
         msgs.iter().any(|m| m.contains("is a 2014 GOAL module")),
@@ -447,9 +445,7 @@ fn unsupported_actions_stop_loading_with_an_error() {
             ("events.mod2g", EMPTY_EVENTS),
         ],
     );
-    let p = load_mas(&dir.join("team.mas2g"))
-        .err()
-        .expect("does not load");
+    let p = load_mas(&dir.join("team.mas2g")).expect_err("does not load");
     assert_eq!(p[0].diagnostic.code, "E0600");
     assert!(p[0].diagnostic.file.ends_with("main.mod2g"));
 }
@@ -569,9 +565,7 @@ fn load_time_errors_and_bw4t_parameter_notes() {
             ("events.mod2g", EMPTY_EVENTS),
         ],
     );
-    let p = load_mas(&dir.join("team.mas2g"))
-        .err()
-        .expect("does not load");
+    let p = load_mas(&dir.join("team.mas2g")).expect_err("does not load");
     assert_eq!(p[0].diagnostic.code, "E0609");
     let twice = "use \"bw4t.jar\" with agentcount = \"1\".
 define r { use control for decisions. replace in/1. update in/1. }
@@ -586,9 +580,7 @@ launchpolicy { when * launch r. }";
             ),
         ],
     );
-    let p = load_mas(&dir.join("team.mas2g"))
-        .err()
-        .expect("does not load");
+    let p = load_mas(&dir.join("team.mas2g")).expect_err("does not load");
     assert_eq!(p[0].diagnostic.code, "E0610");
     // Client parameters the built-in BW4T does not use, and an entity type it never has.
     let notes = "use \"BW4TClient.jar\" as environment with Map = \"Rainbow\", agentcount = \"2\", speed = \"20\", humancount = \"1\", clientip = \"localhost\".

@@ -675,10 +675,7 @@ pub fn syntax_error(e: ParseError<usize, MTok, Diagnostic>, src: &str, file: &st
         ParseError::InvalidToken { location } => {
             Diagnostic::error("E0014", "invalid token", file, location..location + 1)
         }
-        ParseError::UnrecognizedEof {
-            location,
-            ref expected,
-        } => Diagnostic::error(
+        ParseError::UnrecognizedEof { location, expected } => Diagnostic::error(
             "E0015",
             format!(
                 "unexpected end of file, expected {}",
