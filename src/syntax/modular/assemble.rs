@@ -82,8 +82,10 @@ pub fn assemble(
             reference, role, ..
         } = item
         {
-            if let Some(first) = roles.insert(role.value.keyword(), role.span.clone()) {
-                let _ = first;
+            if roles
+                .insert(role.value.keyword(), role.span.clone())
+                .is_some()
+            {
                 a.error(
                     "E0606",
                     format!("the {} module is given twice", role.value.keyword()),

@@ -4,9 +4,9 @@
 
 use super::assemble::{assemble, kr_clauses, AgentBuild};
 use super::ast::Generation;
-use super::mas::{AgentItem, ModMas};
+use super::mas::ModMas;
 use crate::diag::{Diagnostic, Severity};
-use crate::syntax::ast::{AgentProgram, Module, ModuleKind, ModuleOptions};
+use crate::syntax::ast::{Module, ModuleKind, ModuleOptions};
 use crate::syntax::check::FileReport;
 use crate::syntax::mas2g::ast::EntitySpec;
 use crate::syntax::prolog::Reader;
@@ -180,13 +180,6 @@ fn mas_checks(mas: &ModMas) -> Vec<Diagnostic> {
                 )),
             );
         }
-        if mas.generation == Generation::Modular
-            && a.items
-                .iter()
-                .any(|i| matches!(i, AgentItem::Percept { .. }))
-        {
-            // Reported by the parser as mixing; nothing more here.
-        }
     }
     out
 }
@@ -308,14 +301,8 @@ pub fn check_act_file(path: &Path, text: &str) -> Vec<Diagnostic> {
         head_span: 0..0,
         span,
     };
-    let program = AgentProgram {
-        file: file.clone(),
-        modules: vec![module],
-        imports: Vec::new(),
-        span: 0..text.len(),
-    };
     diags.extend(
-        crate::syntax::validate::validate_module_file(&program.modules[0], &file, None)
+        crate::syntax::validate::validate_module_file(&module, &file, None)
             .into_iter()
             .filter(|d| d.severity == Severity::Error || d.code != "W0101"),
     );
