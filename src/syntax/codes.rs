@@ -120,6 +120,7 @@ pub const CODES: &[(&str, &str)] = &[
     ("W0608", "a BW4T client init parameter the built-in environment ignores"),
     ("W0609", "a `.pl` line `p/1.` that looks like a declaration cut off by `.`"),
     ("W0610", "a MARBEL `goal(..)` literal reads the database's goal/1 predicate"),
+    ("W0611", "a MARBEL percept declaration whose predicate nothing reads"),
 ];
 
 /// The meaning of a code, if it is known.

@@ -439,6 +439,7 @@ impl Assembler<'_> {
         if self.gen == Generation::Marbel {
             self.goal_predicate(&mut modules);
         }
+        self.unused_declarations(&modules);
         let percepts = self.percept_rules();
         // (B) percepts are stored before the init module runs, in the first cycle, too.
         if !self.beliefs.is_empty() || !self.goals.is_empty() || !percepts.is_empty() {
@@ -527,6 +528,45 @@ impl Assembler<'_> {
                 )
                 .with_hint("the .pl files define goal/1; rename it to use the goal operator"),
             );
+        }
+    }
+
+    /// W0611: a (B) percept declaration whose predicate no condition or knowledge rule reads.
+    fn unused_declarations(&mut self, modules: &[Module]) {
+        let mut read: Vec<&Term> = self.knowledge.iter().map(|c| &c.term).collect();
+        for m in modules {
+            let Some(p) = &m.program else { continue };
+            read.extend(
+                p.macros
+                    .iter()
+                    .flat_map(|d| d.body.iter())
+                    .filter_map(query),
+            );
+            let mut stack: Vec<&Rule> = p.rules.iter().collect();
+            while let Some(r) = stack.pop() {
+                read.extend(r.condition.iter().filter_map(query));
+                if let RuleBody::Block(rs) = &r.body {
+                    stack.extend(rs.iter());
+                }
+            }
+        }
+        for item in &self.agent.items {
+            let AgentItem::Percept {
+                name, arity, span, ..
+            } = item
+            else {
+                continue;
+            };
+            if !read.iter().any(|t| mentions(t, &name.value, *arity)) {
+                let d = Diagnostic::warning(
+                    "W0611",
+                    format!("percept {}/{arity} is stored but never read", name.value),
+                    self.sources.segments[0].name.clone(),
+                    span.clone(),
+                )
+                .with_hint("remove the declaration, or use the predicate in a condition");
+                self.diags.push(d);
+            }
         }
     }
 
@@ -887,4 +927,23 @@ fn local_macros(modules: &mut [Module]) {
             }
         }
     }
+}
+
+fn query(l: &Literal) -> Option<&Term> {
+    match &l.kind {
+        LiteralKind::Mental { query, .. } => Some(&query.term),
+        _ => None,
+    }
+}
+
+/// True when `t` has a subterm `name/arity` (iterative walk).
+fn mentions(t: &Term, name: &str, arity: usize) -> bool {
+    let mut stack = vec![t];
+    while let Some(t) = stack.pop() {
+        if matches!(t.functor(), Some((f, n)) if n == arity && f.name() == name) {
+            return true;
+        }
+        stack.extend(t.args().iter());
+    }
+    false
 }
