@@ -34,11 +34,14 @@ fn every_shipped_test_file_passes() {
         .iter()
         .filter_map(|f| f.file_name().map(|n| n.to_string_lossy().into_owned()))
         .collect();
-    // Sorted by full path: blocksworld, bw4t (robot, team), counter, pingpong.
+    // Sorted by full path: blocksworld, bw4t (marbel/team, modular/team, robot, team),
+    // counter, pingpong.
     assert_eq!(
         names,
         [
             "stacker.test2g",
+            "team.test2g",
+            "team.test2g",
             "robot.test2g",
             "team.test2g",
             "counter.test2g",
@@ -56,8 +59,9 @@ fn every_shipped_test_file_passes() {
         }
     }
     assert!(failures.is_empty(), "failing tests:\n{}", failures.join(""));
-    // stacker 1, robot 1, team 3 (Bot1, Bot2, Bot3), counter 1, ping-pong 1.
-    assert_eq!(count, 7);
+    // stacker 1, MARBEL and modular teams 3 each, robot 1, team 3 (Bot1, Bot2, Bot3),
+    // counter 1, ping-pong 1.
+    assert_eq!(count, 13);
 }
 
 #[test]

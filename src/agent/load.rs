@@ -121,5 +121,5 @@ pub fn check_file(path: &Path) -> Vec<FileReport> {
 
 /// Checks one file as `goal check` does and, for a `.mas2g`, also the agent files it names.
 pub fn check_path_with_agents(path: &Path) -> Vec<FileReport> {
-    crate::syntax::check::with_agents(path, check_file)
+    crate::syntax::check::with_agents(path, &check_file)
 }

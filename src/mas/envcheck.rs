@@ -242,11 +242,25 @@ fn unknown_percept(
 /// `goal check` of one file with the environment checks: for a `.mas2g`, the environment it
 /// selects and every agent file it names against that environment.
 pub fn check_path(path: &Path) -> Vec<FileReport> {
+    if path.is_dir() {
+        return crate::syntax::check::check_dir(path, &check_path);
+    }
     let mut reports = crate::agent::load::check_path_with_agents(path);
     if path.extension().and_then(|e| e.to_str()) != Some("mas2g") || reports.is_empty() {
         return reports;
     }
-    let (mas, _) = crate::syntax::mas2g::parse(&reports[0].source, &reports[0].file);
+    let (source, file) = (&reports[0].source, &reports[0].file);
+    let classic = crate::syntax::modular::detect::mas_generation(source)
+        == crate::syntax::modular::ast::Generation::Classic;
+    let mas = if classic {
+        crate::syntax::mas2g::parse(source, file).0
+    } else {
+        let (modular, _) = crate::syntax::modular::mas::parse(source, file);
+        match &modular.env {
+            Some(e) => super::modular::classic_env(&modular, e),
+            None => return reports,
+        }
+    };
     let (setup, diags) = check_mas(&mas);
     reports[0].diagnostics.extend(diags);
     let Some(setup) = setup else {

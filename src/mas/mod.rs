@@ -24,6 +24,7 @@ pub mod envcheck;
 pub mod environment;
 pub mod launch;
 pub mod memory;
+pub mod modular;
 pub mod routing;
 pub mod run;
 pub mod scheduler;

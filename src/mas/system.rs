@@ -94,6 +94,12 @@ pub struct MasSystem {
 pub fn load_mas(path: &Path) -> Result<MasSystem, Vec<Problem>> {
     let file = path.display().to_string();
     let text = crate::syntax::check::read_source(path).map_err(|d| vec![Problem::bare(d)])?;
+    // Modular GOAL (A) and MARBEL (B) systems are assembled by their own loader.
+    if crate::syntax::modular::detect::mas_generation(&text)
+        != crate::syntax::modular::ast::Generation::Classic
+    {
+        return super::modular::load(path, &text);
+    }
     let base = path.parent().unwrap_or(Path::new(".")).to_path_buf();
     from_mas_text(&file, &text, Origin::Disk(base))
 }
@@ -220,7 +226,7 @@ fn compile_file(
 
 /// The setup with a map file named relative to the `.mas2g` file made relative to the
 /// working directory (`\\` separators of Windows paths read as `/`).
-fn with_map_path(mut setup: EnvSetup, origin: &Origin) -> EnvSetup {
+pub(crate) fn with_map_path(mut setup: EnvSetup, origin: &Origin) -> EnvSetup {
     let (Some(map), Some(base)) = (setup.params.get("map"), origin.base_dir()) else {
         return setup;
     };

@@ -1,7 +1,8 @@
 //! Checking one file by its extension: read it safely, parse it, collect every diagnostic.
 
 use crate::diag::Diagnostic;
-use crate::syntax::{goal, prolog::Reader};
+use crate::syntax::goal;
+use crate::syntax::modular::{self, ast::Generation};
 use std::path::Path;
 
 /// Files larger than this are refused with a diagnostic.
@@ -88,6 +89,11 @@ pub fn check_path(path: &Path) -> FileReport {
             ));
             d
         }
+        "mod2g" if modular::detect::module_generation(&source, base_dir(path)) != Generation::Classic => {
+            let gen = modular::detect::module_generation(&source, base_dir(path));
+            modular::check::check_module_file(path, &source, gen)
+        }
+        "act2g" => modular::check::check_act_file(path, &source),
         "mod2g" => {
             let (module, mut d) = goal::parse_mod2g(&file, &source);
             if let Some(m) = &module {
@@ -99,14 +105,7 @@ pub fn check_path(path: &Path) -> FileReport {
             }
             d
         }
-        "pl" => {
-            // Read as GOAL reads imported Prolog files (its leniencies with warnings).
-            let mut reader = Reader::goal(file.as_str());
-            let (clauses, mut d) = reader.clauses(&source, 0);
-            d.append(&mut reader.warnings);
-            d.extend(crate::syntax::validate::validate_prolog(&clauses, &file));
-            d
-        }
+        "pl" => modular::check::check_pl_file(path, &source),
         "mas2g" => {
             let (mas, mut d) = crate::syntax::mas2g::parse(&source, &file);
             d.extend(crate::syntax::mas2g::check_files(&mas, base_dir(path)));
@@ -125,7 +124,7 @@ pub fn check_path(path: &Path) -> FileReport {
             file.clone(),
             0..0,
         )
-        .with_hint("goal check reads .goal, .mod2g, .pl, .mas2g and .test2g files")],
+        .with_hint("goal check reads .goal, .mod2g, .act2g, .pl, .mas2g and .test2g files, and directories")],
     };
     FileReport {
         file,
@@ -139,14 +138,27 @@ fn base_dir(path: &Path) -> &Path {
     path.parent().unwrap_or(Path::new("."))
 }
 
-/// Checks one file and, for a `.mas2g`, also the agent files it names that exist (each once).
+/// Checks one file and, for a `.mas2g`, also the agent files it names that exist (each once);
+/// for a directory, every `.mas2g` file in it with everything those use.
 pub fn check_path_with_agents(path: &Path) -> Vec<FileReport> {
-    with_agents(path, |p| vec![check_path(p)])
+    with_agents(path, &|p| vec![check_path(p)])
 }
 
 /// Checks one file with `check` and, for a `.mas2g`, also the `.goal` agent files it names that
-/// exist (each once). `check` may return several reports for one file (its imported files).
-pub fn with_agents(path: &Path, check: impl Fn(&Path) -> Vec<FileReport>) -> Vec<FileReport> {
+/// exist (each once); for a directory, every `.mas2g` file in it. `check` may return several
+/// reports for one file (its imported files). Modular `.mas2g` files are checked with everything
+/// they use by the modular front end.
+pub fn with_agents(path: &Path, check: &dyn Fn(&Path) -> Vec<FileReport>) -> Vec<FileReport> {
+    if path.is_dir() {
+        return check_dir(path, &|m| with_agents(m, check));
+    }
+    if path.extension().and_then(|e| e.to_str()) == Some("mas2g") {
+        if let Ok(text) = read_source(path) {
+            if modular::detect::mas_generation(&text) != Generation::Classic {
+                return modular::check::check_mas(path, &text);
+            }
+        }
+    }
     let mut out = check(path);
     let Some(report) = out.first() else {
         return out;
@@ -156,6 +168,45 @@ pub fn with_agents(path: &Path, check: impl Fn(&Path) -> Vec<FileReport>) -> Vec
         for agent in crate::syntax::mas2g::check::agent_file_paths(&mas, base_dir(path)) {
             if agent.is_file() && agent.extension().and_then(|e| e.to_str()) == Some("goal") {
                 out.extend(check(&agent));
+            }
+        }
+    }
+    out
+}
+
+/// Checks a project directory: every `.mas2g` file directly in it (sorted by name) and what
+/// they use, each file reported once.
+pub fn check_dir(dir: &Path, each: &dyn Fn(&Path) -> Vec<FileReport>) -> Vec<FileReport> {
+    let mut mas: Vec<_> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().and_then(|e| e.to_str()) == Some("mas2g"))
+        .collect();
+    mas.sort();
+    if mas.is_empty() {
+        let file = dir.display().to_string();
+        let d = Diagnostic::error(
+            "E0017",
+            format!("`{file}` is a directory with no .mas2g file to check"),
+            file.clone(),
+            0..0,
+        )
+        .with_hint(
+            "give the directory of a project (with its .mas2g files), or the files to check",
+        );
+        return vec![FileReport {
+            file,
+            source: String::new(),
+            diagnostics: vec![d],
+        }];
+    }
+    let mut out: Vec<FileReport> = Vec::new();
+    for m in mas {
+        for r in each(&m) {
+            if !out.iter().any(|o| o.file == r.file) {
+                out.push(r);
             }
         }
     }

@@ -1,6 +1,8 @@
 //! The table of diagnostic codes, one line each. Ranges: `E00xx`/`W00xx` lexing and parsing of
 //! `.goal`/`.mod2g`/`.pl` files and file access, `E01xx`/`W01xx` the validator, `E02xx`/`W02xx`
-//! `.mas2g` files, `E03xx`/`W03xx` `.test2g` files, `E04xx`/`W04xx` compiling a program to run it.
+//! `.mas2g` files, `E03xx`/`W03xx` `.test2g` files, `E04xx`/`W04xx` compiling a program to run it,
+//! `E06xx`/`W06xx` modular GOAL and MARBEL (`.mod2g` modules, `.act2g` files and the modular
+//! `.mas2g` forms).
 
 /// `(code, meaning)` for every diagnostic code, sorted by code.
 #[rustfmt::skip]
@@ -78,6 +80,19 @@ pub const CODES: &[(&str, &str)] = &[
     ("E0411", "a selector on `drop`, `insert` or `delete`, or one other than this/self on `adopt`"),
     ("E0412", "`send` without a receiver: all, allother, self or agent names"),
     ("E0413", "an action or module that does not exist (found while compiling)"),
+    ("E0600", "an action this runtime cannot run yet (sleep, timers, channels) in a system being loaded"),
+    ("E0601", "`sendonce` in a modular module (removed after 2014)"),
+    ("E0602", "`send` without receivers or to `this` in a modular module"),
+    ("E0603", "`sleep`, `starttimer`, `canceltimer`, `subscribe` or `unsubscribe` with the wrong number of arguments"),
+    ("E0604", "`not(...)` inside `post-` of an `.act2g` spec"),
+    ("E0605", "a `.mas2g` file mixes modular GOAL (A) and MARBEL (B) forms"),
+    ("E0606", "an unknown module role, a role given twice, or an agent without main and event module"),
+    ("E0607", "a file named by a use clause is not found"),
+    ("E0608", "an `.act2g` file uses something other than knowledge files"),
+    ("E0609", "a rule in a file used as beliefs or goals"),
+    ("E0610", "a MARBEL percept declared twice in one agent"),
+    ("E0611", "a module file of another generation than its MAS file"),
+    ("E0612", "one file named twice by the use clauses of one file"),
     ("W0001", "duplicate section: only the first one is used"),
     ("W0002", "legacy send form (`bob.send(p)` or `send(bob, p)`)"),
     ("W0003", "unknown module option (ignored)"),
@@ -112,6 +127,17 @@ pub const CODES: &[(&str, &str)] = &[
     ("W0301", "duplicate named test in one agent block"),
     ("W0302", "an agent is tested in more than one block"),
     ("W0402", "`order=adaptive` runs as `order=random`"),
+    ("W0601", "an adaptive learning clause (ignored)"),
+    ("W0602", "a MARBEL role alias (`for decision`, `for events`, ...) read as the canonical word"),
+    ("W0603", "a called module's declared name differs from its file name"),
+    ("W0604", "a shutdown module (not run by this runtime)"),
+    ("W0605", "a Prolog directive other than `:- dynamic` in a `.pl` file (ignored)"),
+    ("W0606", "an action this runtime cannot run yet (reported by goal check)"),
+    ("W0607", "a launch rule for an entity type BW4T never has"),
+    ("W0608", "a BW4T client init parameter the built-in environment ignores"),
+    ("W0609", "a `.pl` line `p/1.` that looks like a declaration cut off by `.`"),
+    ("W0610", "a MARBEL `goal(..)` literal reads the database's goal/1 predicate"),
+    ("W0611", "a MARBEL percept declaration whose predicate nothing reads"),
 ];
 
 /// The meaning of a code, if it is known.

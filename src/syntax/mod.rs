@@ -6,6 +6,7 @@ pub mod codes;
 pub mod goal;
 pub mod lexer;
 pub mod mas2g;
+pub mod modular;
 pub mod prolog;
 pub mod test2g;
 pub mod validate;

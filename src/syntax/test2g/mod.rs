@@ -26,6 +26,10 @@ lalrpop_mod!(
 /// Parses `.test2g` text read from `file`: the test (if the text could be read far enough) and
 /// every syntax error found.
 pub fn parse(source: &str, file: &str) -> (Option<MasTest>, Vec<Diagnostic>) {
+    // A modular GOAL (A) test file (no `masTest`) is lowered to the same AST.
+    if !crate::syntax::modular::test2g::is_classic(source) {
+        return crate::syntax::modular::test2g::parse(source, file);
+    }
     let (tokens, mut diags) = lexer::tokens(source, file);
     let lexing_failed = diags.iter().any(Diagnostic::is_error);
     let mut ctx = ctx::Ctx::new(source, file);

@@ -1,0 +1,949 @@
+//! Assembling one agent of a modular `.mas2g` into a 2014 [`AgentProgram`]: resolve the use
+//! clauses (§3.1 of the modular reference), parse every file once into one [`SourceSet`], give
+//! the role modules their 2014 kinds, pool knowledge, beliefs, goals and action specs, and lower
+//! what has no 2014 form into ordinary rules and specs:
+//! * (B) percept declarations `add`/`update`/`replace p/n` become `forall` rules at the start of
+//!   the updates (event) module;
+//! * (B) actions that are neither modules nor specified become environment actions with a
+//!   `true` pre- and postcondition;
+//! * messages are visible for one cycle: the event module ends by deleting `received/2` and
+//!   `sent/2` facts.
+
+use super::ast::{ActFile, Generation, ModFile, UseCase, UseClause};
+use super::build::located;
+use super::mas::{AgentDef, AgentItem, PerceptMode, Role};
+use super::sources::SourceSet;
+use crate::diag::{Diagnostic, Span};
+use crate::syntax::ast::*;
+use crate::syntax::prolog::Reader;
+use crate::term::{Sym, Term};
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// The assembled program of one agent definition, with every file it reads.
+pub struct AgentBuild {
+    pub program: AgentProgram,
+    pub sources: SourceSet,
+    /// Problems found (spans in the shared text; see [`SourceSet::localize`]).
+    pub diagnostics: Vec<Diagnostic>,
+    /// Actions that parse but that this runtime cannot run (name and span).
+    pub unsupported: Vec<(&'static str, Span)>,
+}
+
+struct Loaded {
+    role: Option<Role>,
+    file: ModFile,
+}
+
+struct Assembler<'a> {
+    gen: Generation,
+    sources: SourceSet,
+    diags: Vec<Diagnostic>,
+    /// Module files by canonical path.
+    modules: BTreeMap<PathBuf, usize>,
+    loaded: Vec<Loaded>,
+    act_files: BTreeSet<PathBuf>,
+    kr_files: BTreeSet<(PathBuf, &'static str)>,
+    specs: Vec<ActionSpec>,
+    knowledge: Vec<Located>,
+    beliefs: Vec<Located>,
+    goals: Vec<Located>,
+    agent: &'a AgentDef,
+}
+
+/// Assembles agent definition `agent` of the `.mas2g` file `mas_name` (text `mas_text`, in
+/// directory `base`).
+pub fn assemble(
+    mas_name: &str,
+    mas_text: &str,
+    base: &Path,
+    agent: &AgentDef,
+    gen: Generation,
+) -> AgentBuild {
+    let mut a = Assembler {
+        gen,
+        sources: SourceSet::default(),
+        diags: Vec::new(),
+        modules: BTreeMap::new(),
+        loaded: Vec::new(),
+        act_files: BTreeSet::new(),
+        kr_files: BTreeSet::new(),
+        specs: Vec::new(),
+        knowledge: Vec::new(),
+        beliefs: Vec::new(),
+        goals: Vec::new(),
+        agent,
+    };
+    // The MAS text comes first: spans of what the lowering adds point at the agent definition.
+    a.sources.add(mas_name, mas_text);
+    let mut roles: BTreeMap<&'static str, Span> = BTreeMap::new();
+    for item in &agent.items {
+        if let AgentItem::Use {
+            reference, role, ..
+        } = item
+        {
+            if roles
+                .insert(role.value.keyword(), role.span.clone())
+                .is_some()
+            {
+                a.error(
+                    "E0606",
+                    format!("the {} module is given twice", role.value.keyword()),
+                    role.span.clone(),
+                    "an agent has at most one module per role",
+                );
+                continue;
+            }
+            match resolve(base, &reference.value, &["mod2g"]) {
+                Some(p) => a.load_module(&p, Some(role.value), reference.span.clone()),
+                None => a.not_found(&reference.value, "mod2g", reference.span.clone()),
+            }
+        }
+    }
+    if !roles.contains_key("main") && !roles.contains_key("event") {
+        let what = if gen == Generation::Marbel {
+            "`use m for decisions.`"
+        } else {
+            "`use m as main module.`"
+        };
+        a.error(
+            "E0606",
+            format!(
+                "agent `{}` has no main (decisions) and no event (updates) module",
+                agent.name.value
+            ),
+            agent.name.span.clone(),
+            &format!("add {what}"),
+        );
+    }
+    a.finish()
+}
+
+/// The file `r` relative to `dir`, trying the extensions in order when it has none of them.
+pub fn resolve(dir: &Path, r: &str, exts: &[&str]) -> Option<PathBuf> {
+    let p = dir.join(r);
+    let has_ext = p
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| exts.contains(&e));
+    if has_ext && p.is_file() {
+        return Some(p);
+    }
+    exts.iter()
+        .map(|e| dir.join(format!("{r}.{e}")))
+        .find(|q| q.is_file())
+}
+
+fn canonical(p: &Path) -> PathBuf {
+    p.canonicalize().unwrap_or_else(|_| p.to_path_buf())
+}
+
+impl Assembler<'_> {
+    fn error(&mut self, code: &str, msg: impl Into<String>, span: Span, hint: &str) {
+        let file = self.sources.segments[0].name.clone();
+        self.diags
+            .push(Diagnostic::error(code, msg, file, span).with_hint(hint));
+    }
+
+    fn warning(&mut self, code: &str, msg: impl Into<String>, span: Span, hint: &str) {
+        let file = self.sources.segments[0].name.clone();
+        self.diags
+            .push(Diagnostic::warning(code, msg, file, span).with_hint(hint));
+    }
+
+    fn not_found(&mut self, r: &str, ext: &str, span: Span) {
+        self.error(
+            "E0607",
+            format!("`{r}` not found (looked for `{r}` and `{r}.{ext}`)"),
+            span,
+            "references are relative to the file that contains the use clause",
+        );
+    }
+
+    /// Reads a file into the shared text; returns its segment range.
+    fn read(&mut self, path: &Path, span: &Span) -> Option<(String, usize, usize)> {
+        match crate::syntax::check::read_source(path) {
+            Ok(text) => {
+                let name = path.display().to_string();
+                let i = self.sources.add(&name, &text);
+                let s = &self.sources.segments[i];
+                Some((name, s.start, s.end))
+            }
+            Err(mut d) => {
+                d.span = span.clone();
+                d.file = self.sources.segments[0].name.clone();
+                self.diags.push(d);
+                None
+            }
+        }
+    }
+
+    fn load_module(&mut self, path: &Path, role: Option<Role>, span: Span) {
+        let key = canonical(path);
+        if let Some(&i) = self.modules.get(&key) {
+            if role.is_some() && self.loaded[i].role.is_some() {
+                self.error(
+                    "E0606",
+                    format!("`{}` is used for two roles", path.display()),
+                    span,
+                    "give each role its own module file",
+                );
+            } else if role.is_some() {
+                self.loaded[i].role = role;
+            }
+            return;
+        }
+        let Some((name, start, end)) = self.read(path, &span) else {
+            return;
+        };
+        let marbel = self.gen == Generation::Marbel;
+        let dir = path.parent().unwrap_or(Path::new("."));
+        let written = super::detect::module_generation(&self.sources.text[start..end], dir);
+        let mismatch = written == Generation::Classic
+            || (written == Generation::Marbel && self.gen == Generation::Modular);
+        if mismatch {
+            let d = Diagnostic::error(
+                "E0611",
+                format!(
+                    "`{name}` is a {} module, but the MAS file is {}",
+                    written.label(),
+                    self.gen.label()
+                ),
+                self.sources.segments[0].name.clone(),
+                span,
+            )
+            .with_hint(match written {
+                Generation::Classic => "a 2014 module (with `program { }` sections) is imported by a `.goal` file with `#import`",
+                _ => "write the conditions with mental operators (`bel(..)`, `percept(..)`), or use a MARBEL MAS file (`define a { use m for decisions. }`)",
+            });
+            self.diags.push(d);
+            return;
+        }
+        let (file, diags) = super::parse_mod2g(&name, &self.sources.text, start, end, marbel);
+        self.diags.extend(diags);
+        let Some(file) = file else { return };
+        self.modules.insert(key, self.loaded.len());
+        let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+        let uses = file.uses.clone();
+        self.loaded.push(Loaded { role, file });
+        self.duplicate_uses(&dir, &uses);
+        for u in &uses {
+            self.use_clause(&dir, u, true);
+        }
+    }
+
+    /// Follows the use clauses of a module (`in_module`) or action-spec file.
+    fn use_clause(&mut self, dir: &Path, u: &UseClause, in_module: bool) {
+        let case = u.case.as_ref().map(|c| c.value);
+        for r in &u.refs {
+            let span = r.span.clone();
+            match case {
+                Some(UseCase::Knowledge | UseCase::Beliefs | UseCase::Goals) => {
+                    let c = case.unwrap_or(UseCase::Knowledge);
+                    match resolve(dir, &r.value, &["pl"]) {
+                        Some(p) => self.load_kr(&p, c, span),
+                        None => self.not_found(&r.value, "pl", span),
+                    }
+                }
+                _ if !in_module => self.error(
+                    "E0608",
+                    "an action specification file can only use knowledge files",
+                    u.span.clone(),
+                    "write `use file as knowledge.`",
+                ),
+                Some(UseCase::Module) => match resolve(dir, &r.value, &["mod2g"]) {
+                    Some(p) => self.load_module(&p, None, span),
+                    None => self.not_found(&r.value, "mod2g", span),
+                },
+                Some(UseCase::ActionSpec) => match resolve(dir, &r.value, &["act2g"]) {
+                    Some(p) => self.load_act(&p, span),
+                    None => self.not_found(&r.value, "act2g", span),
+                },
+                Some(UseCase::Mas | UseCase::Planner) => {}
+                None => {
+                    // A bare use: a module, then an action-spec file; in (B) also a `.pl`.
+                    let mut exts = vec!["mod2g", "act2g", "mas2g"];
+                    if self.gen == Generation::Marbel {
+                        exts.push("pl");
+                    }
+                    match resolve(dir, &r.value, &exts) {
+                        Some(p) => match p.extension().and_then(|e| e.to_str()) {
+                            Some("mod2g") => self.load_module(&p, None, span),
+                            Some("act2g") => self.load_act(&p, span),
+                            Some("pl") => self.load_kr(&p, UseCase::Knowledge, span),
+                            _ => {}
+                        },
+                        None => {
+                            let hint = if self.gen == Generation::Marbel {
+                                "a bare `use` names a .mod2g, .act2g or .pl file"
+                            } else {
+                                "a bare `use` names a .mod2g or .act2g file; write `use f as knowledge.` for a .pl file"
+                            };
+                            self.error("E0607", format!("`{}` not found", r.value), span, hint)
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// E0612: one file named twice by the use clauses of one file.
+    fn duplicate_uses(&mut self, dir: &Path, uses: &[UseClause]) {
+        let mut seen: BTreeSet<PathBuf> = BTreeSet::new();
+        for u in uses {
+            let exts: &[&str] = match u.case.as_ref().map(|c| c.value) {
+                Some(UseCase::Knowledge | UseCase::Beliefs | UseCase::Goals) => &["pl"],
+                Some(UseCase::Module) => &["mod2g"],
+                Some(UseCase::ActionSpec) => &["act2g"],
+                Some(UseCase::Mas | UseCase::Planner) => continue,
+                None => &["mod2g", "act2g", "mas2g", "pl"],
+            };
+            for r in &u.refs {
+                let Some(p) = resolve(dir, &r.value, exts) else {
+                    continue;
+                };
+                if !seen.insert(canonical(&p)) {
+                    let file = self
+                        .sources
+                        .segment_of(r.span.start)
+                        .map_or(String::new(), |s| s.name.clone());
+                    self.diags.push(
+                        Diagnostic::error(
+                            "E0612",
+                            format!("`{}` is used twice in this file", r.value),
+                            file,
+                            r.span.clone(),
+                        )
+                        .with_hint("remove one of the use clauses"),
+                    );
+                }
+            }
+        }
+    }
+
+    fn load_act(&mut self, path: &Path, span: Span) {
+        if !self.act_files.insert(canonical(path)) {
+            return;
+        }
+        let Some((name, start, end)) = self.read(path, &span) else {
+            return;
+        };
+        let (file, diags) = super::parse_act2g(&name, &self.sources.text, start, end);
+        self.diags.extend(diags);
+        let Some(ActFile { uses, specs, .. }) = file else {
+            return;
+        };
+        self.specs.extend(specs);
+        let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+        for u in &uses {
+            self.use_clause(&dir, u, false);
+        }
+    }
+
+    fn load_kr(&mut self, path: &Path, case: UseCase, span: Span) {
+        if !self.kr_files.insert((canonical(path), case.keyword())) {
+            return;
+        }
+        let Some((name, start, end)) = self.read(path, &span) else {
+            return;
+        };
+        let text = blank_dynamic(&self.sources.text[start..end]);
+        let (clauses, diags) = Reader::new(name.as_str()).clauses(&text, start);
+        self.diags.extend(diags);
+        for c in kr_clauses(clauses, &name, &mut self.diags) {
+            let rule = matches!(c.term.functor(), Some((f, 2)) if f.name() == ":-");
+            match case {
+                // (B): the .pl file is the initial database: ground facts are beliefs (the
+                // program may delete them), rules and facts with variables are knowledge.
+                UseCase::Knowledge
+                    if self.gen == Generation::Marbel && !rule && c.term.vars().is_empty() =>
+                {
+                    self.beliefs.push(c)
+                }
+                UseCase::Knowledge => self.knowledge.push(c),
+                UseCase::Beliefs | UseCase::Goals if rule => {
+                    let what = case.keyword();
+                    self.diags.push(
+                        Diagnostic::error(
+                            "E0609",
+                            format!("a rule in a file used as {what}"),
+                            name.clone(),
+                            c.spans.span.clone(),
+                        )
+                        .with_hint("rules belong in a file used as knowledge"),
+                    );
+                }
+                UseCase::Beliefs => self.beliefs.push(c),
+                _ => self.goals.push(c),
+            }
+        }
+    }
+
+    fn finish(mut self) -> AgentBuild {
+        let agent_span = self.agent.span.clone();
+        let mut modules: Vec<Module> = Vec::new();
+        let mut unsupported = Vec::new();
+        let mut has = BTreeSet::new();
+        for l in std::mem::take(&mut self.loaded) {
+            let mut m = l.file.module;
+            unsupported.extend(l.file.unsupported.iter().map(|u| (u.name, u.span.clone())));
+            match l.role {
+                Some(Role::Init) => m.kind = ModuleKind::Init,
+                Some(Role::Main) => m.kind = ModuleKind::Main,
+                Some(Role::Event) => m.kind = ModuleKind::Event,
+                Some(Role::Shutdown) => {
+                    self.warning(
+                        "W0604",
+                        "the shutdown module is not run by this runtime",
+                        m.head_span.clone(),
+                        "move what it does into the main module",
+                    );
+                    continue;
+                }
+                None => self.name_check(&m, &l.file.file),
+            }
+            has.insert(m.name().to_string());
+            modules.push(m);
+        }
+        let by_kind = |k: &str, ms: &mut Vec<Module>, span: &Span| -> usize {
+            if let Some(i) = ms
+                .iter()
+                .position(|m| m.name() == k && !matches!(m.kind, ModuleKind::User { .. }))
+            {
+                return i;
+            }
+            ms.push(Module {
+                kind: match k {
+                    "init" => ModuleKind::Init,
+                    _ => ModuleKind::Event,
+                },
+                options: ModuleOptions::default(),
+                knowledge: Vec::new(),
+                beliefs: Vec::new(),
+                goals: Vec::new(),
+                program: Some(ProgramSection {
+                    order: None,
+                    macros: Vec::new(),
+                    rules: Vec::new(),
+                    span: span.clone(),
+                }),
+                action_specs: Vec::new(),
+                imports: Vec::new(),
+                sections: Vec::new(),
+                head_span: span.clone(),
+                span: span.clone(),
+            });
+            ms.len() - 1
+        };
+        local_macros(&mut modules);
+        if self.gen == Generation::Marbel {
+            self.goal_predicate(&mut modules);
+        }
+        self.unused_declarations(&modules);
+        let percepts = self.percept_rules();
+        // (B) percepts are stored before the init module runs, in the first cycle, too.
+        if !self.beliefs.is_empty() || !self.goals.is_empty() || !percepts.is_empty() {
+            let i = by_kind("init", &mut modules, &agent_span);
+            modules[i].beliefs.append(&mut self.beliefs);
+            modules[i].goals.append(&mut self.goals);
+            if let Some(p) = modules[i].program.as_mut() {
+                p.rules.splice(0..0, percepts.iter().cloned());
+            }
+        }
+        let ev = by_kind("event", &mut modules, &agent_span);
+        let mut first = percepts;
+        if let Some(p) = modules[ev].program.as_mut() {
+            first.append(&mut p.rules);
+            first.extend(clear_messages(&agent_span));
+            p.rules = first;
+        }
+        if self.gen == Generation::Marbel {
+            let env = environment_actions(&modules, &self.specs, &agent_span);
+            self.specs.extend(env);
+        }
+        if let Some(m) = modules.first_mut() {
+            m.knowledge.append(&mut self.knowledge);
+            m.action_specs.append(&mut self.specs);
+        }
+        let program = AgentProgram {
+            file: self.sources.segments[0].name.clone(),
+            modules,
+            imports: Vec::new(),
+            span: agent_span,
+        };
+        AgentBuild {
+            program,
+            sources: self.sources,
+            diagnostics: self.diags,
+            unsupported,
+        }
+    }
+
+    /// (B) when the database defines `goal/1`, a `goal(..)` literal queries that predicate
+    /// (MARBEL has no goals of its own in the course programs); a warning says so once.
+    fn goal_predicate(&mut self, modules: &mut [Module]) {
+        let defines = self.knowledge.iter().chain(self.beliefs.iter()).any(|c| {
+            let head = match c.term.functor() {
+                Some((f, 2)) if f.name() == ":-" => &c.term.args()[0],
+                _ => &c.term,
+            };
+            matches!(head.functor(), Some((f, 1)) if f.name() == "goal")
+        });
+        if !defines {
+            return;
+        }
+        let mut first: Option<Span> = None;
+        for m in modules.iter_mut() {
+            let Some(p) = m.program.as_mut() else {
+                continue;
+            };
+            let mut stack: Vec<&mut Rule> = p.rules.iter_mut().collect();
+            while let Some(r) = stack.pop() {
+                for l in r.condition.iter_mut() {
+                    if let LiteralKind::Mental { op, query, .. } = &mut l.kind {
+                        if *op == MentalOp::Goal {
+                            *op = MentalOp::Bel;
+                            let t = Term::compound("goal", vec![query.term.clone()]);
+                            *query = located(t, query.spans.span.clone());
+                            first.get_or_insert(l.span.clone());
+                        }
+                    }
+                }
+                if let RuleBody::Block(rs) = &mut r.body {
+                    stack.extend(rs.iter_mut());
+                }
+            }
+        }
+        if let Some(span) = first {
+            let file = self
+                .sources
+                .segment_of(span.start)
+                .map_or(String::new(), |s| s.name.clone());
+            self.diags.push(
+                Diagnostic::warning(
+                    "W0610",
+                    "`goal(..)` queries the predicate goal/1 of the database",
+                    file,
+                    span,
+                )
+                .with_hint("the .pl files define goal/1; rename it to use the goal operator"),
+            );
+        }
+    }
+
+    /// W0611: a (B) percept declaration whose predicate no condition or knowledge rule reads.
+    fn unused_declarations(&mut self, modules: &[Module]) {
+        let mut read: Vec<&Term> = self.knowledge.iter().map(|c| &c.term).collect();
+        for m in modules {
+            let Some(p) = &m.program else { continue };
+            read.extend(
+                p.macros
+                    .iter()
+                    .flat_map(|d| d.body.iter())
+                    .filter_map(query),
+            );
+            let mut stack: Vec<&Rule> = p.rules.iter().collect();
+            while let Some(r) = stack.pop() {
+                read.extend(r.condition.iter().filter_map(query));
+                if let RuleBody::Block(rs) = &r.body {
+                    stack.extend(rs.iter());
+                }
+            }
+        }
+        for item in &self.agent.items {
+            let AgentItem::Percept {
+                name, arity, span, ..
+            } = item
+            else {
+                continue;
+            };
+            if !read.iter().any(|t| mentions(t, &name.value, *arity)) {
+                let d = Diagnostic::warning(
+                    "W0611",
+                    format!("percept {}/{arity} is stored but never read", name.value),
+                    self.sources.segments[0].name.clone(),
+                    span.clone(),
+                )
+                .with_hint("remove the declaration, or use the predicate in a condition");
+                self.diags.push(d);
+            }
+        }
+    }
+
+    /// W0603: a called module whose declared name is not its file's name.
+    fn name_check(&mut self, m: &Module, file: &str) {
+        let base = Path::new(file)
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("");
+        if m.name() != base {
+            let d = Diagnostic::warning(
+                "W0603",
+                format!("module `{}` is declared in `{file}`", m.name()),
+                file,
+                m.head_span.clone(),
+            )
+            .with_hint(format!("calls use the declared name `{}`", m.name()));
+            self.diags.push(d);
+        }
+    }
+
+    /// (B) percept declarations as rules of the updates module (in declaration order).
+    fn percept_rules(&mut self) -> Vec<Rule> {
+        let mut out = Vec::new();
+        let mut seen: BTreeMap<(String, usize), Span> = BTreeMap::new();
+        for item in &self.agent.items {
+            let AgentItem::Percept {
+                mode,
+                name,
+                arity,
+                span,
+            } = item
+            else {
+                continue;
+            };
+            if seen
+                .insert((name.value.clone(), *arity), span.clone())
+                .is_some()
+            {
+                let d = Diagnostic::error(
+                    "E0610",
+                    format!("percept {}/{arity} is declared twice", name.value),
+                    self.sources.segments[0].name.clone(),
+                    span.clone(),
+                )
+                .with_hint("declare each percept once, with one of add, update, replace");
+                self.diags.push(d);
+                continue;
+            }
+            out.extend(percept_declaration(*mode, &name.value, *arity, span));
+        }
+        out
+    }
+}
+
+/// Drops `:- dynamic` directives (they only declare belief predicates) and warns about others.
+pub fn kr_clauses(clauses: Vec<Located>, file: &str, diags: &mut Vec<Diagnostic>) -> Vec<Located> {
+    let mut out = Vec::new();
+    for c in clauses {
+        match c.term.functor() {
+            Some((f, 1)) if f.name() == ":-" => {
+                let dynamic =
+                    matches!(c.term.args()[0].functor(), Some((d, 1)) if d.name() == "dynamic");
+                if !dynamic {
+                    diags.push(
+                        Diagnostic::warning(
+                            "W0605",
+                            "directive ignored: only `:- dynamic ...` is understood",
+                            file,
+                            c.spans.span.clone(),
+                        )
+                        .with_hint("remove the directive"),
+                    );
+                }
+            }
+            Some((f, 2))
+                if f.name() == "/"
+                    && matches!(c.term.args()[0], Term::Atom(_))
+                    && matches!(c.term.args()[1], Term::Int(_)) =>
+            {
+                // `:- dynamic a/1.` followed by `b/2.`: a dot where a comma was meant. The
+                // line is a fact of '/'/2 (as in SWI-Prolog); say what it probably meant.
+                diags.push(
+                    Diagnostic::warning(
+                        "W0609",
+                        format!("`{}` looks like a declaration cut off by `.`", c.term),
+                        file,
+                        c.spans.span.clone(),
+                    )
+                    .with_hint("end the line before with `,` to declare it, or remove it"),
+                );
+                out.push(c)
+            }
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+fn vars(prefix: &str, n: usize) -> Vec<Term> {
+    (1..=n)
+        .map(|i| Term::var(&format!("{prefix}{i}")))
+        .collect()
+}
+
+fn lit(t: Term, span: &Span) -> Literal {
+    Literal {
+        kind: LiteralKind::Mental {
+            negated: false,
+            selector: Selector::default_this(),
+            op: MentalOp::Bel,
+            query: located(t, span.clone()),
+        },
+        span: span.clone(),
+    }
+}
+
+fn forall(cond: Term, action: ActionKind, span: &Span) -> Rule {
+    Rule {
+        kind: RuleKind::Forall,
+        condition: vec![lit(cond, span)],
+        body: RuleBody::Combo(vec![Action {
+            kind: action,
+            span: span.clone(),
+        }]),
+        span: span.clone(),
+    }
+}
+
+fn insert(t: Term, span: &Span) -> ActionKind {
+    ActionKind::Insert {
+        selector: Selector::default_this(),
+        content: located(t, span.clone()),
+    }
+}
+
+fn delete(t: Term, span: &Span) -> ActionKind {
+    ActionKind::Delete {
+        selector: Selector::default_this(),
+        content: located(t, span.clone()),
+    }
+}
+
+fn and(items: Vec<Term>) -> Term {
+    super::build::conjunction(items)
+}
+
+fn naf(t: Term) -> Term {
+    Term::compound("\\+", vec![t])
+}
+
+fn wrap(name: &str, t: Term) -> Term {
+    Term::compound(name, vec![t])
+}
+
+/// The rules of one percept declaration (§3.8.3 of the modular reference):
+/// * `add p/n`: insert each `p` of this cycle's batch;
+/// * `update p/n`: when the batch has `p` facts, they replace the old ones; a `not(p)` in the
+///   batch deletes `p`;
+/// * `replace p/n`: the `p` facts mirror the percepts that hold now.
+pub fn percept_declaration(mode: PerceptMode, name: &str, arity: usize, span: &Span) -> Vec<Rule> {
+    let p = Term::compound(name, vars("V", arity));
+    let new = |t: Term| wrap("newpercept", t);
+    let perceived = |t: Term| wrap("percept", t);
+    let add_new = forall(
+        and(vec![new(p.clone()), naf(p.clone())]),
+        insert(p.clone(), span),
+        span,
+    );
+    match mode {
+        PerceptMode::Add => vec![add_new],
+        PerceptMode::Update => {
+            let any = Term::compound(name, vars("_W", arity));
+            vec![
+                forall(
+                    and(vec![naf(naf(new(any))), p.clone(), naf(new(p.clone()))]),
+                    delete(p.clone(), span),
+                    span,
+                ),
+                add_new,
+                forall(
+                    and(vec![new(wrap("not", p.clone())), p.clone()]),
+                    delete(p.clone(), span),
+                    span,
+                ),
+            ]
+        }
+        PerceptMode::Replace => vec![
+            forall(
+                and(vec![p.clone(), naf(perceived(p.clone()))]),
+                delete(p.clone(), span),
+                span,
+            ),
+            forall(
+                and(vec![perceived(p.clone()), naf(p.clone())]),
+                insert(p, span),
+                span,
+            ),
+        ],
+    }
+}
+
+/// Messages live for one cycle: the event module ends by forgetting them.
+fn clear_messages(span: &Span) -> Vec<Rule> {
+    ["received", "sent"]
+        .iter()
+        .map(|f| {
+            let t = Term::compound(*f, vec![Term::var("S"), Term::var("M")]);
+            forall(t.clone(), delete(t, span), span)
+        })
+        .collect()
+}
+
+/// (B) every called name that is neither a module nor a specified action: an environment
+/// action, always enabled, without effects on the database.
+fn environment_actions(modules: &[Module], specs: &[ActionSpec], span: &Span) -> Vec<ActionSpec> {
+    let mut known: BTreeSet<(String, usize)> = specs
+        .iter()
+        .map(|s| (s.name.name.name().to_string(), s.params.len()))
+        .collect();
+    for m in modules {
+        if let ModuleKind::User { name, params } = &m.kind {
+            known.insert((name.name.name().to_string(), params.len()));
+        }
+    }
+    let mut out = Vec::new();
+    for m in modules {
+        let mut stack: Vec<&Rule> = m.program.iter().flat_map(|p| p.rules.iter()).collect();
+        while let Some(r) = stack.pop() {
+            match &r.body {
+                RuleBody::Block(rs) => stack.extend(rs.iter()),
+                RuleBody::Combo(actions) => {
+                    for a in actions {
+                        let ActionKind::Call { name, args } = &a.kind else {
+                            continue;
+                        };
+                        let key = (name.name.name().to_string(), args.len());
+                        if !known.insert(key) {
+                            continue;
+                        }
+                        let truth = SpecCondition {
+                            term: located(Term::atom("true"), span.clone()),
+                            empty: false,
+                            span: span.clone(),
+                        };
+                        out.push(ActionSpec {
+                            name: Ident {
+                                name: Sym::intern(name.name.name()),
+                                span: span.clone(),
+                            },
+                            params: vars("X", args.len())
+                                .into_iter()
+                                .map(|v| located(v, span.clone()))
+                                .collect(),
+                            kind: ActionSpecKind::Env,
+                            kind_span: None,
+                            pre: truth.clone(),
+                            post: truth,
+                            span: span.clone(),
+                        });
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// `:- dynamic p/1, q/2.` directives blanked out (same length, so spans stay right): GOAL's fixed
+/// operator table has no `dynamic` operator, and the directives only declare belief predicates.
+pub fn blank_dynamic(text: &str) -> String {
+    let b = text.as_bytes();
+    let mut walk = crate::syntax::lexer::kr::Significant::new(text, 0, text.len());
+    let mut blanks: Vec<Span> = Vec::new();
+    let (mut clause_start, mut depth, mut directive) = (true, 0i64, None);
+    while let Some(Ok((p, c))) = walk.next_byte() {
+        if clause_start && !c.is_ascii_whitespace() {
+            clause_start = false;
+            let rest = text[p..].strip_prefix(":-").map(str::trim_start);
+            if rest.is_some_and(|r| {
+                r.strip_prefix("dynamic")
+                    .is_some_and(|x| x.starts_with(|ch: char| ch.is_whitespace()))
+            }) {
+                directive = Some(p);
+            }
+        }
+        match c {
+            b'(' | b'[' | b'{' => depth += 1,
+            b')' | b']' | b'}' => depth -= 1,
+            b'.' if depth <= 0
+                && b.get(p + 1)
+                    .is_none_or(|n| n.is_ascii_whitespace() || *n == b'%') =>
+            {
+                if let Some(s) = directive.take() {
+                    blanks.push(s..p + 1);
+                }
+                clause_start = true;
+                depth = 0;
+            }
+            _ => {}
+        }
+    }
+    let mut out = text.as_bytes().to_vec();
+    for s in blanks {
+        for x in &mut out[s] {
+            if *x != b'\n' {
+                *x = b' ';
+            }
+        }
+    }
+    // Only ASCII bytes outside quotes were replaced by spaces: still UTF-8.
+    String::from_utf8(out).unwrap_or_else(|_| text.to_string())
+}
+
+/// Macros are local to their file, but the 2014 compiler keeps one macro per name/arity: a
+/// macro whose name/arity an earlier file defines too is renamed `name'module` in its file
+/// (definition and uses), so each file keeps its own.
+fn local_macros(modules: &mut [Module]) {
+    let mut seen: BTreeSet<(String, usize)> = BTreeSet::new();
+    for m in modules.iter_mut() {
+        let module = m.name().to_string();
+        let Some(p) = m.program.as_mut() else {
+            continue;
+        };
+        let mut clash: BTreeMap<(String, usize), Sym> = BTreeMap::new();
+        for d in &p.macros {
+            let key = (d.name.name.name().to_string(), d.params.len());
+            if seen.contains(&key) {
+                clash.insert(key.clone(), Sym::intern(&format!("{}'{module}", key.0)));
+            }
+        }
+        seen.extend(
+            p.macros
+                .iter()
+                .map(|d| (d.name.name.name().to_string(), d.params.len())),
+        );
+        if clash.is_empty() {
+            continue;
+        }
+        let rename = |l: &mut Literal| {
+            if let LiteralKind::MacroUse { name, args } = &mut l.kind {
+                if let Some(n) = clash.get(&(name.name.name().to_string(), args.len())) {
+                    name.name = *n;
+                }
+            }
+        };
+        for d in p.macros.iter_mut() {
+            if let Some(n) = clash.get(&(d.name.name.name().to_string(), d.params.len())) {
+                d.name.name = *n;
+            }
+            d.body.iter_mut().for_each(rename);
+        }
+        let mut stack: Vec<&mut Rule> = p.rules.iter_mut().collect();
+        while let Some(r) = stack.pop() {
+            r.condition.iter_mut().for_each(rename);
+            if let RuleBody::Block(rs) = &mut r.body {
+                stack.extend(rs.iter_mut());
+            }
+        }
+    }
+}
+
+fn query(l: &Literal) -> Option<&Term> {
+    match &l.kind {
+        LiteralKind::Mental { query, .. } => Some(&query.term),
+        _ => None,
+    }
+}
+
+/// True when `t` has a subterm `name/arity` (iterative walk).
+fn mentions(t: &Term, name: &str, arity: usize) -> bool {
+    let mut stack = vec![t];
+    while let Some(t) = stack.pop() {
+        if matches!(t.functor(), Some((f, n)) if n == arity && f.name() == name) {
+            return true;
+        }
+        stack.extend(t.args().iter());
+    }
+    false
+}
