@@ -616,7 +616,7 @@ launchpolicy { when type = robot launch r. }";
     let env = sys.env.expect("the built-in BW4T").params;
     assert_eq!(
         env.get("map").map(|t| t.to_string()),
-        Some("\"rainbow\"".into())
+        Some("rainbow".into())
     );
     assert_eq!(env.get("robots").map(|t| t.to_string()), Some("2".into()));
     assert!(!env.contains_key("clientip"));

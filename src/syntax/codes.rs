@@ -134,7 +134,6 @@ pub const CODES: &[(&str, &str)] = &[
     ("W0605", "a Prolog directive other than `:- dynamic` in a `.pl` file (ignored)"),
     ("W0606", "an action this runtime cannot run yet (reported by goal check)"),
     ("W0607", "a launch rule for an entity type BW4T never has"),
-    ("W0608", "a BW4T client init parameter the built-in environment ignores"),
     ("W0609", "a `.pl` line `p/1.` that looks like a declaration cut off by `.`"),
     ("W0610", "a MARBEL `goal(..)` literal reads the database's goal/1 predicate"),
     ("W0611", "a MARBEL percept declaration whose predicate nothing reads"),
