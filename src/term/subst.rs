@@ -86,23 +86,45 @@ impl Subst {
         self.apply_depth(t, 0)
     }
 
+    /// The iterative walk behind [`Subst::apply`]. Parts nested deeper than
+    /// [`Subst::MAX_APPLY_DEPTH`] are left as they are: only a cyclic binding (possible
+    /// without the occurs check, `X = f(X)`) gets there.
     fn apply_depth(&self, t: &Term, depth: usize) -> Term {
-        match self.walk(t) {
-            Term::Compound(c) if depth < 100_000 => {
-                let args: Vec<Term> = c
-                    .args
-                    .iter()
-                    .map(|a| self.apply_depth(a, depth + 1))
-                    .collect();
-                if args.iter().zip(c.args.iter()).all(|(new, old)| new == old) {
-                    self.walk(t).clone()
-                } else {
-                    Term::compound(c.name, args)
+        enum W<'a> {
+            Visit(&'a Term, usize),
+            /// The walked compound, and whether walking left the original term.
+            Build(&'a Term, bool),
+        }
+        let mut work = vec![W::Visit(t, depth)];
+        // Each result with whether it differs from the term it came from.
+        let mut out: Vec<(Term, bool)> = Vec::new();
+        while let Some(w) = work.pop() {
+            match w {
+                W::Visit(t, d) => match self.walk(t) {
+                    w @ Term::Compound(c) if d < Self::MAX_APPLY_DEPTH => {
+                        work.push(W::Build(w, !std::ptr::eq(w, t)));
+                        work.extend(c.args.iter().rev().map(|a| W::Visit(a, d + 1)));
+                    }
+                    other => out.push((other.clone(), !std::ptr::eq(other, t))),
+                },
+                W::Build(w, walked) => {
+                    let Term::Compound(c) = w else { continue };
+                    let args = out.split_off(out.len() - c.args.len());
+                    // Unchanged arguments: share the original term instead of a copy.
+                    if args.iter().all(|(_, changed)| !changed) {
+                        out.push((w.clone(), walked));
+                    } else {
+                        let args = args.into_iter().map(|(a, _)| a).collect();
+                        out.push((Term::compound(c.name, args), true));
+                    }
                 }
             }
-            other => other.clone(),
         }
+        out.pop().map_or_else(|| t.clone(), |(r, _)| r)
     }
+
+    /// Nesting depth beyond which [`Subst::apply`] stops following bindings.
+    pub const MAX_APPLY_DEPTH: usize = 4_000_000;
 
     /// Unifies `a` and `b` under this substitution, extending it; on failure the substitution
     /// is left unchanged and `false` is returned.

@@ -54,23 +54,25 @@ impl Drop for Compound {
 
 impl PartialEq for Term {
     fn eq(&self, other: &Term) -> bool {
+        // Pairs still to compare: an explicit stack, so deep nesting in any argument is fine.
+        let mut stack: Vec<(&Term, &Term)> = Vec::new();
         let (mut a, mut b) = (self, other);
         loop {
-            return match (a, b) {
+            let same = match (a, b) {
                 (Term::Compound(x), Term::Compound(y)) => {
                     if Arc::ptr_eq(x, y) {
-                        return true;
-                    }
-                    if x.name != y.name || x.args.len() != y.args.len() {
+                        true
+                    } else if x.name != y.name || x.args.len() != y.args.len() {
                         return false;
+                    } else {
+                        let n = x.args.len();
+                        for i in (0..n - 1).rev() {
+                            stack.push((&x.args[i], &y.args[i]));
+                        }
+                        a = &x.args[n - 1];
+                        b = &y.args[n - 1];
+                        continue;
                     }
-                    let n = x.args.len();
-                    if x.args[..n - 1] != y.args[..n - 1] {
-                        return false;
-                    }
-                    a = &x.args[n - 1];
-                    b = &y.args[n - 1];
-                    continue;
                 }
                 (Term::Atom(x), Term::Atom(y)) | (Term::Var(x), Term::Var(y)) => x == y,
                 (Term::Int(x), Term::Int(y)) => x == y,
@@ -78,6 +80,13 @@ impl PartialEq for Term {
                 (Term::Str(x), Term::Str(y)) => x == y,
                 _ => false,
             };
+            if !same {
+                return false;
+            }
+            match stack.pop() {
+                Some((x, y)) => (a, b) = (x, y),
+                None => return true,
+            }
         }
     }
 }
@@ -86,8 +95,9 @@ impl Eq for Term {}
 
 impl Hash for Term {
     fn hash<H: Hasher>(&self, state: &mut H) {
-        let mut t = self;
-        loop {
+        // Depth-first, left to right, with an explicit stack (no recursion on nesting).
+        let mut stack: Vec<&Term> = vec![self];
+        while let Some(t) = stack.pop() {
             std::mem::discriminant(t).hash(state);
             match t {
                 Term::Atom(s) | Term::Var(s) => s.hash(state),
@@ -97,15 +107,9 @@ impl Hash for Term {
                 Term::Compound(c) => {
                     c.name.hash(state);
                     c.args.len().hash(state);
-                    let n = c.args.len();
-                    for a in &c.args[..n - 1] {
-                        a.hash(state);
-                    }
-                    t = &c.args[n - 1];
-                    continue;
+                    stack.extend(c.args.iter().rev());
                 }
             }
-            return;
         }
     }
 }
@@ -241,11 +245,51 @@ impl Term {
 
     /// True when the term contains no variables.
     pub fn is_ground(&self) -> bool {
-        match self {
-            Term::Var(_) => false,
-            Term::Compound(c) => c.args.iter().all(Term::is_ground),
-            _ => true,
+        let mut stack = vec![self];
+        while let Some(t) = stack.pop() {
+            match t {
+                Term::Var(_) => return false,
+                Term::Compound(c) => stack.extend(c.args.iter()),
+                _ => {}
+            }
         }
+        true
+    }
+
+    /// A copy of the term for messages: parts nested deeper than `max_depth`, and everything
+    /// after the first `max_nodes` sub-terms, are replaced by the atom `...` (built without
+    /// recursion, so the result is small and shallow whatever the input).
+    pub fn truncated(&self, max_depth: usize, max_nodes: usize) -> Term {
+        enum W<'a> {
+            Visit(&'a Term, usize),
+            Build(Sym, usize),
+        }
+        let ellipsis = || Term::Atom(Sym::intern("..."));
+        let mut nodes = 0usize;
+        let mut work = vec![W::Visit(self, 0)];
+        let mut out: Vec<Term> = Vec::new();
+        while let Some(w) = work.pop() {
+            match w {
+                W::Visit(t, d) => {
+                    nodes += 1;
+                    match t {
+                        Term::Compound(_) if d >= max_depth || nodes > max_nodes => {
+                            out.push(ellipsis())
+                        }
+                        Term::Compound(c) => {
+                            work.push(W::Build(c.name, c.args.len()));
+                            work.extend(c.args.iter().rev().map(|a| W::Visit(a, d + 1)));
+                        }
+                        other => out.push(other.clone()),
+                    }
+                }
+                W::Build(name, n) => {
+                    let args = out.split_off(out.len() - n);
+                    out.push(Term::compound(name, args));
+                }
+            }
+        }
+        out.pop().unwrap_or_else(ellipsis)
     }
 
     /// The items of a proper list, or `None` if the term is not a proper list.
@@ -339,13 +383,13 @@ impl Term {
     /// Var < Number < Atom < String < Compound; numbers by value (Float before Int when equal);
     /// atoms alphabetically; compounds by arity, then name, then arguments left to right.
     pub fn compare(&self, other: &Term) -> Ordering {
-        let (mut a, mut b) = (self, other);
-        loop {
+        let mut stack: Vec<(&Term, &Term)> = vec![(self, other)];
+        while let Some((a, b)) = stack.pop() {
             let class = a.order_class().cmp(&b.order_class());
             if class != Ordering::Equal {
                 return class;
             }
-            return match (a, b) {
+            let o = match (a, b) {
                 (Term::Var(x), Term::Var(y)) => x.name().cmp(y.name()),
                 (Term::Int(x), Term::Int(y)) => x.cmp(y),
                 (Term::Float(x), Term::Float(y)) => x.0.total_cmp(&y.0),
@@ -354,28 +398,26 @@ impl Term {
                 (Term::Atom(x), Term::Atom(y)) => x.name().cmp(y.name()),
                 (Term::Str(x), Term::Str(y)) => x.cmp(y),
                 (Term::Compound(x), Term::Compound(y)) => {
+                    if Arc::ptr_eq(x, y) {
+                        continue;
+                    }
                     let head = x
                         .args
                         .len()
                         .cmp(&y.args.len())
                         .then_with(|| x.name.name().cmp(y.name.name()));
-                    if head != Ordering::Equal {
-                        return head;
+                    if head == Ordering::Equal {
+                        stack.extend(x.args.iter().zip(y.args.iter()).rev());
                     }
-                    let n = x.args.len();
-                    for (p, q) in x.args[..n - 1].iter().zip(y.args[..n - 1].iter()) {
-                        let o = p.compare(q);
-                        if o != Ordering::Equal {
-                            return o;
-                        }
-                    }
-                    a = &x.args[n - 1];
-                    b = &y.args[n - 1];
-                    continue;
+                    head
                 }
                 _ => Ordering::Equal,
             };
+            if o != Ordering::Equal {
+                return o;
+            }
         }
+        Ordering::Equal
     }
 }
 

@@ -34,6 +34,7 @@ builtins! {
     Cut "!" [0] false; Comma "," [2] false; Or ";" [2] false; OrBar "|" [2] false;
     IfThen "->" [2] false; SoftIfThen "*->" [2] false; Not "\\+" [1] false; NotWord "not" [1] false;
     Call "call" [1, 2, 3, 4, 5, 6, 7, 8] false; Findall "findall" [3] false; Findall4 "findall" [4] false;
+    Catch "catch" [3] false; Throw "throw" [1] false;
     Between "between" [3] false; Member "member" [2] true; Repeat "repeat" [0] false;
     Once "once" [1] false; Ignore "ignore" [1] false; Forall "forall" [2] false; Caret "^" [2] false;
     Unify "=" [2] false; NotUnify "\\=" [2] false; UnifyOc "unify_with_occurs_check" [2] false;

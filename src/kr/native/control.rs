@@ -165,12 +165,17 @@ impl Solver<'_, '_> {
                     Ok(false)
                 }
             }
+            B::Catch => {
+                self.catch(p, next, cut, depth);
+                Ok(true)
+            }
+            B::Throw => Err(self.throw(p)),
             B::Repeat => {
                 self.push_choice(Alt::Repeat, next, cut, depth);
                 self.cont = next;
                 Ok(true)
             }
-            _ => match builtins::det(self, b, g, p)? {
+            _ => match self.det_checked(b, g, p)? {
                 builtins::Flow::Fail => Ok(false),
                 builtins::Flow::True => {
                     self.cont = next;
@@ -182,6 +187,19 @@ impl Solver<'_, '_> {
                 }
             },
         }
+    }
+
+    /// A deterministic built-in, then the memory and output budgets (a built-in may build a
+    /// large term or write much text in one step).
+    fn det_checked(&mut self, b: B, g: Cell, p: u32) -> KrResult<builtins::Flow> {
+        let flow = builtins::det(self, b, g, p)?;
+        let l = self.cx.limits;
+        if self.m.st.heap.len() as u64 > l.max_heap_cells || self.cx.out.len() as u64 > l.max_output
+        {
+            let name = self.m.st.functor(g).map_or((wk::NIL, 0), |f| f);
+            self.check_memory(&|| format!("{}/{}", Term::Atom(name.0), name.1))?;
+        }
+        Ok(flow)
     }
 
     /// `goal` with `extra` arguments appended (for `call/N`, `maplist`, ...).
