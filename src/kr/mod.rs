@@ -93,7 +93,7 @@ pub mod knowledge;
 pub mod native;
 pub mod update;
 
-pub use error::{KrError, KrResult, Limits, LoadError};
+pub use error::{Interrupt, KrError, KrResult, Limits, LoadError};
 pub use factbase::FactBase;
 pub use knowledge::Knowledge;
 pub use native::NativeEngine;

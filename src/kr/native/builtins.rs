@@ -84,7 +84,7 @@ builtins! {
     OrdDelElement "ord_del_element" [3] true; OrdSubset "ord_subset" [2] true;
     ListToOrdSet "list_to_ord_set" [2] true; OrdEmpty "ord_empty" [1] true;
     SumEval "$sum_eval" [2] false; MaxEval "$max_eval" [3] false; BagofPrep "$bagof_prep" [4] false;
-    BagofGroups "$bagof_groups" [2] false;
+    BagofGroups "$bagof_groups" [2] false; Protected "$protected" [] false;
 }
 
 /// True when programs may redefine this built-in (SWI library predicates).
@@ -101,6 +101,15 @@ pub(crate) fn library() -> &'static Knowledge {
             for a in arities.iter() {
                 k.table
                     .insert((Sym::intern(name), *a), PredRef::Builtin(*b));
+            }
+        }
+        // Protected predicates called at run time (`call(assert(X))`, a `goal prolog` query)
+        // raise a permission error instead of failing as unknown predicates do.
+        for name in crate::kr::knowledge::protected_names() {
+            for a in 0..=4 {
+                k.table
+                    .entry((Sym::intern(name), a))
+                    .or_insert(PredRef::Builtin(B::Protected));
             }
         }
         for clause in super::prelude::clauses() {

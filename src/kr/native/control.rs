@@ -170,6 +170,7 @@ impl Solver<'_, '_> {
                 Ok(true)
             }
             B::Throw => Err(self.throw(p)),
+            B::Protected => Err(protected(self.m.st.functor(g))),
             B::Repeat => {
                 self.push_choice(Alt::Repeat, next, cut, depth);
                 self.cont = next;
@@ -226,4 +227,26 @@ impl Solver<'_, '_> {
         all.extend_from_slice(extra);
         Ok(self.m.st.new_struct(name, &all))
     }
+}
+
+/// `error(permission_error(access, private_procedure, Name/Arity), Hint)` for a protected
+/// predicate called at run time, with a hint saying how agents change their beliefs.
+fn protected(f: Option<(Sym, u32)>) -> KrError {
+    let (name, arity) = f.unwrap_or((wk::NIL, 0));
+    let pi = Term::compound("/", vec![Term::Atom(name), Term::Int(arity as i64)]);
+    let hint = if name.name().starts_with("assert") || name.name().starts_with("retract") {
+        "protected in GOAL: agents change beliefs with insert/1 and delete/1 actions"
+    } else {
+        "protected in GOAL: this predicate cannot be called from agent knowledge or queries"
+    };
+    KrError::Iso(Term::compound(
+        "error",
+        vec![
+            Term::compound(
+                "permission_error",
+                vec![Term::atom("access"), Term::atom("private_procedure"), pi],
+            ),
+            Term::compound("context", vec![Term::var("_"), Term::atom(hint)]),
+        ],
+    ))
 }
