@@ -126,10 +126,12 @@ impl KrError {
         KrError::Iso(Term::compound("error", vec![formal, ctx]))
     }
 
-    /// The error as a Prolog term (`error(...)`, or a descriptive term for budget and depth).
+    /// The error as a Prolog term (`error(...)`, or a descriptive term for budget and depth),
+    /// for showing: a culprit nested deeper than 1,000 or larger than 10,000 sub-terms is cut
+    /// (`...`), so that writing it is cheap and safe.
     pub fn to_term(&self) -> Term {
         match self {
-            KrError::Iso(t) | KrError::Uncaught(t) => t.clone(),
+            KrError::Iso(t) | KrError::Uncaught(t) => t.truncated(1_000, 10_000),
             KrError::Resource {
                 resource,
                 predicate,
