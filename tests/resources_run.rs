@@ -157,3 +157,36 @@ fn runaway_prolog_queries_end_with_resource_errors() {
         );
     }
 }
+
+#[test]
+fn agents_with_long_lists_deep_terms_and_long_operator_chains_run_on_worker_threads() {
+    let dir = std::env::temp_dir().join(format!("goal-big-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // A belief with 100,000 operators (left-nested), a 30,000-element list from a query,
+    // and a term nested 8,000 deep built by the agent: inserted, queried, printed.
+    let chain = vec!["a"; 100_001].join("+");
+    let agent = format!(
+        "init module {{\n\tknowledge {{\n\t\tdeep(0, z) :- !.\n\t\t\
+         deep(N, f(T)) :- N1 is N - 1, deep(N1, T).\n\t}}\n\tbeliefs {{\n\t\tp({chain}).\n\t}}\n\
+         \tgoals {{\n\t\tdone.\n\t}}\n}}\n\
+         main module [exit=nogoals] {{\n\tprogram {{\n\
+         \t\tif a-goal(done), bel(got(L), deep8(T), p(X), X = _ + a) then print(all) + insert(done).\n\
+         \t\tif a-goal(done), not(bel(deep8(_))), bel(deep(8000, T)) then insert(deep8(T)).\n\
+         \t\tif a-goal(done), not(bel(got(_))), bel(numlist(1, 30000, L)) then insert(got(L)).\n\
+         \t}}\n}}\n"
+    );
+    std::fs::write(dir.join("big.goal"), agent).unwrap();
+    std::fs::write(
+        dir.join("big.mas2g"),
+        "agentfiles {\n\t\"big.goal\".\n}\nlaunchpolicy {\n\tlaunch a : big.\n\tlaunch b : big.\n}\n",
+    )
+    .unwrap();
+    let mas = dir.join("big.mas2g");
+    let r = goal(&["run", "--workers", "2", mas.to_str().unwrap()]);
+    let all = format!("{}{}", r.stdout, r.stderr);
+    assert!(r.success, "{all}");
+    assert_eq!(r.stdout.matches("all").count(), 2, "{all}");
+    let check = goal(&["check", dir.join("big.goal").to_str().unwrap()]);
+    assert!(check.success, "{}{}", check.stdout, check.stderr);
+    let _ = std::fs::remove_dir_all(&dir);
+}
