@@ -5,6 +5,19 @@
 
 use super::sym::Sym;
 use super::term::Term;
+use smallvec::{smallvec, SmallVec};
+
+/// Nesting depth up to which [`Subst::apply`] recurses.
+const SHALLOW: usize = 64;
+
+/// True when `new` is `old` itself or an atomic copy of it (cheap: no deep comparison).
+fn same(new: &Term, old: &Term) -> bool {
+    match (new, old) {
+        (Term::Compound(a), Term::Compound(b)) => std::sync::Arc::ptr_eq(a, b),
+        (Term::Compound(_), _) | (_, Term::Compound(_)) => false,
+        _ => new == old,
+    }
+}
 
 /// A substitution: bindings from variable names to terms, kept in insertion order so that
 /// printing and iteration are deterministic.
@@ -83,7 +96,32 @@ impl Subst {
         if self.bindings.is_empty() {
             return t.clone();
         }
-        self.apply_depth(t, 0)
+        self.apply_shallow(t, 0)
+    }
+
+    /// [`Subst::apply`] by recursion while the term is shallow (the usual case: no work
+    /// stacks to allocate); sub-terms deeper than [`SHALLOW`] go to the iterative walk.
+    fn apply_shallow(&self, t: &Term, depth: usize) -> Term {
+        match self.walk(t) {
+            Term::Compound(_) if depth >= SHALLOW => self.apply_depth(t, depth),
+            w @ Term::Compound(c) => {
+                let args: Vec<Term> = c
+                    .args
+                    .iter()
+                    .map(|a| self.apply_shallow(a, depth + 1))
+                    .collect();
+                if args
+                    .iter()
+                    .zip(c.args.iter())
+                    .all(|(new, old)| same(new, old))
+                {
+                    w.clone()
+                } else {
+                    Term::compound(c.name, args)
+                }
+            }
+            other => other.clone(),
+        }
     }
 
     /// The iterative walk behind [`Subst::apply`]. Parts nested deeper than
@@ -95,9 +133,9 @@ impl Subst {
             /// The walked compound, and whether walking left the original term.
             Build(&'a Term, bool),
         }
-        let mut work = vec![W::Visit(t, depth)];
+        let mut work: SmallVec<[W; 16]> = smallvec![W::Visit(t, depth)];
         // Each result with whether it differs from the term it came from.
-        let mut out: Vec<(Term, bool)> = Vec::new();
+        let mut out: SmallVec<[(Term, bool); 8]> = SmallVec::new();
         while let Some(w) = work.pop() {
             match w {
                 W::Visit(t, d) => match self.walk(t) {
@@ -109,12 +147,13 @@ impl Subst {
                 },
                 W::Build(w, walked) => {
                     let Term::Compound(c) = w else { continue };
-                    let args = out.split_off(out.len() - c.args.len());
+                    let start = out.len() - c.args.len();
                     // Unchanged arguments: share the original term instead of a copy.
-                    if args.iter().all(|(_, changed)| !changed) {
+                    if out[start..].iter().all(|(_, changed)| !changed) {
+                        out.truncate(start);
                         out.push((w.clone(), walked));
                     } else {
-                        let args = args.into_iter().map(|(a, _)| a).collect();
+                        let args = out.drain(start..).map(|(a, _)| a).collect();
                         out.push((Term::compound(c.name, args), true));
                     }
                 }

@@ -47,31 +47,61 @@ pub(crate) struct Store {
 
 /// Names given to unbound variables when answers are converted back to terms.
 pub(crate) struct VarNames {
-    /// Heap address of a variable and the name it gets in the answer (hashed: an answer can
-    /// hold many unbound variables).
-    named: FxHashMap<u32, Sym>,
+    /// Heap address of a variable and the name it gets in the answer.
+    named: Vec<(u32, Sym)>,
+    /// `named` hashed, once it is long (an answer can hold many unbound variables).
+    index: Option<FxHashMap<u32, Sym>>,
     fresh: usize,
 }
+
+/// Names searched linearly up to this many; hashed beyond.
+const LINEAR_NAMES: usize = 32;
 
 impl VarNames {
     /// Names for a query whose variables live at the given addresses.
     pub fn new(query_vars: &[(Sym, Cell)]) -> VarNames {
-        let mut named = FxHashMap::default();
+        let mut names = VarNames {
+            named: Vec::new(),
+            index: None,
+            fresh: 0,
+        };
         for (s, c) in query_vars {
             if let Cell::Ref(a) = c {
-                named.entry(*a).or_insert(*s);
+                if names.find(*a).is_none() {
+                    names.add(*a, *s);
+                }
             }
         }
-        VarNames { named, fresh: 0 }
+        names
+    }
+
+    fn find(&self, addr: u32) -> Option<Sym> {
+        match &self.index {
+            Some(m) => m.get(&addr).copied(),
+            None => self.named.iter().find(|(a, _)| *a == addr).map(|(_, s)| *s),
+        }
+    }
+
+    fn add(&mut self, addr: u32, s: Sym) {
+        self.named.push((addr, s));
+        match &mut self.index {
+            Some(m) => {
+                m.insert(addr, s);
+            }
+            None if self.named.len() > LINEAR_NAMES => {
+                self.index = Some(self.named.iter().copied().collect());
+            }
+            None => {}
+        }
     }
 
     fn name(&mut self, addr: u32) -> Sym {
-        if let Some(s) = self.named.get(&addr) {
-            return *s;
+        if let Some(s) = self.find(addr) {
+            return s;
         }
         let s = Sym::intern(&format!("_R{}", self.fresh));
         self.fresh += 1;
-        self.named.insert(addr, s);
+        self.add(addr, s);
         s
     }
 }
