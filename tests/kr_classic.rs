@@ -180,6 +180,7 @@ fn runaway_rules_become_errors() {
     let small = Limits {
         max_inferences: 200_000,
         max_depth: 10_000,
+        ..Limits::default()
     };
     match limited("p :- p.", "p", small) {
         Err(KrError::Depth { predicate, .. }) | Err(KrError::Budget { predicate, .. }) => {

@@ -104,6 +104,11 @@ const PROTECTED: &[&str] = &[
     "check_predicate_option",
 ];
 
+/// The protected names (without the `csv_` family).
+pub(crate) fn protected_names() -> impl Iterator<Item = &'static str> {
+    PROTECTED.iter().copied()
+}
+
 /// True when `name` may not be used as a predicate.
 pub fn is_protected(name: &str) -> bool {
     PROTECTED.contains(&name) || name.starts_with("csv_")

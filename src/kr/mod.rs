@@ -36,6 +36,20 @@
 //!   named `_R0`, `_R1`, ...
 //! * [`Update`]: a GOAL update (a conjunction of literals, `not(L)` marking deletions) split into
 //!   its delete and add lists and applied to a base (delete first, then add).
+//! * Budgets ([`Limits`]): besides inferences and depth, a query has a memory budget (heap
+//!   cells, counting the goal stack, choicepoints and `findall` bags), an answer budget (number
+//!   and total size of the answers a caller collects), an output budget and a maximum text
+//!   length for atoms and strings built at run time. Resuming a choicepoint counts as an
+//!   inference, so pure backtracking loops meet the budget too. Every 1,024 inferences the
+//!   solver also checks an optional deadline and an [`Interrupt`] flag that another thread can
+//!   set, so `--time-limit` and test timeouts always stop a query. Built-ins that allocate or
+//!   walk in proportion to their input check first (`native/budget.rs`), and cyclic input to
+//!   them is `representation_error(cyclic_term)`.
+//! * Exceptions: `catch/3` and `throw/1` follow ISO; errors raised by built-ins are catchable
+//!   `error(Formal, Context)` terms. Budget, depth, memory and interruption errors are not
+//!   catchable. Protected predicates called at run time (`assert/1`, ...) raise
+//!   `permission_error(access, private_procedure, PI)` with a hint that agents change beliefs
+//!   with `insert`/`delete`.
 //! * Errors are values ([`KrError`]): an exceeded inference budget or depth bound (naming the
 //!   predicate being called) or an ISO error term such as `error(instantiation_error, is/2)`,
 //!   `error(type_error(evaluable, foo/0), _)`, `error(evaluation_error(zero_divisor), _)`.
@@ -93,7 +107,7 @@ pub mod knowledge;
 pub mod native;
 pub mod update;
 
-pub use error::{KrError, KrResult, Limits, LoadError};
+pub use error::{Interrupt, KrError, KrResult, Limits, LoadError};
 pub use factbase::FactBase;
 pub use knowledge::Knowledge;
 pub use native::NativeEngine;

@@ -5,6 +5,19 @@
 
 use super::sym::Sym;
 use super::term::Term;
+use smallvec::{smallvec, SmallVec};
+
+/// Nesting depth up to which [`Subst::apply`] recurses.
+const SHALLOW: usize = 64;
+
+/// True when `new` is `old` itself or an atomic copy of it (cheap: no deep comparison).
+fn same(new: &Term, old: &Term) -> bool {
+    match (new, old) {
+        (Term::Compound(a), Term::Compound(b)) => std::sync::Arc::ptr_eq(a, b),
+        (Term::Compound(_), _) | (_, Term::Compound(_)) => false,
+        _ => new == old,
+    }
+}
 
 /// A substitution: bindings from variable names to terms, kept in insertion order so that
 /// printing and iteration are deterministic.
@@ -83,19 +96,26 @@ impl Subst {
         if self.bindings.is_empty() {
             return t.clone();
         }
-        self.apply_depth(t, 0)
+        self.apply_shallow(t, 0)
     }
 
-    fn apply_depth(&self, t: &Term, depth: usize) -> Term {
+    /// [`Subst::apply`] by recursion while the term is shallow (the usual case: no work
+    /// stacks to allocate); sub-terms deeper than [`SHALLOW`] go to the iterative walk.
+    fn apply_shallow(&self, t: &Term, depth: usize) -> Term {
         match self.walk(t) {
-            Term::Compound(c) if depth < 100_000 => {
+            Term::Compound(_) if depth >= SHALLOW => self.apply_depth(t, depth),
+            w @ Term::Compound(c) => {
                 let args: Vec<Term> = c
                     .args
                     .iter()
-                    .map(|a| self.apply_depth(a, depth + 1))
+                    .map(|a| self.apply_shallow(a, depth + 1))
                     .collect();
-                if args.iter().zip(c.args.iter()).all(|(new, old)| new == old) {
-                    self.walk(t).clone()
+                if args
+                    .iter()
+                    .zip(c.args.iter())
+                    .all(|(new, old)| same(new, old))
+                {
+                    w.clone()
                 } else {
                     Term::compound(c.name, args)
                 }
@@ -103,6 +123,47 @@ impl Subst {
             other => other.clone(),
         }
     }
+
+    /// The iterative walk behind [`Subst::apply`]. Parts nested deeper than
+    /// [`Subst::MAX_APPLY_DEPTH`] are left as they are: only a cyclic binding (possible
+    /// without the occurs check, `X = f(X)`) gets there.
+    fn apply_depth(&self, t: &Term, depth: usize) -> Term {
+        enum W<'a> {
+            Visit(&'a Term, usize),
+            /// The walked compound, and whether walking left the original term.
+            Build(&'a Term, bool),
+        }
+        let mut work: SmallVec<[W; 16]> = smallvec![W::Visit(t, depth)];
+        // Each result with whether it differs from the term it came from.
+        let mut out: SmallVec<[(Term, bool); 8]> = SmallVec::new();
+        while let Some(w) = work.pop() {
+            match w {
+                W::Visit(t, d) => match self.walk(t) {
+                    w @ Term::Compound(c) if d < Self::MAX_APPLY_DEPTH => {
+                        work.push(W::Build(w, !std::ptr::eq(w, t)));
+                        work.extend(c.args.iter().rev().map(|a| W::Visit(a, d + 1)));
+                    }
+                    other => out.push((other.clone(), !std::ptr::eq(other, t))),
+                },
+                W::Build(w, walked) => {
+                    let Term::Compound(c) = w else { continue };
+                    let start = out.len() - c.args.len();
+                    // Unchanged arguments: share the original term instead of a copy.
+                    if out[start..].iter().all(|(_, changed)| !changed) {
+                        out.truncate(start);
+                        out.push((w.clone(), walked));
+                    } else {
+                        let args = out.drain(start..).map(|(a, _)| a).collect();
+                        out.push((Term::compound(c.name, args), true));
+                    }
+                }
+            }
+        }
+        out.pop().map_or_else(|| t.clone(), |(r, _)| r)
+    }
+
+    /// Nesting depth beyond which [`Subst::apply`] stops following bindings.
+    pub const MAX_APPLY_DEPTH: usize = 4_000_000;
 
     /// Unifies `a` and `b` under this substitution, extending it; on failure the substitution
     /// is left unchanged and `false` is returned.

@@ -1,9 +1,14 @@
 //! The one term type shared by the parser, the KR engines, percepts, actions, messages and traces.
 
 use super::sym::{well_known as wk, Sym};
+use smallvec::{smallvec, SmallVec};
 use std::cmp::Ordering;
 use std::hash::{Hash, Hasher};
 use std::sync::Arc;
+
+/// The work stack of a walk over a term: inline for the usual shallow terms (no allocation on
+/// the hot paths of hashing and comparison), on the heap only for deep ones.
+type Stack<T> = SmallVec<[T; 16]>;
 
 /// A Prolog term. Cheap to clone: compound terms share their arguments.
 ///
@@ -54,58 +59,126 @@ impl Drop for Compound {
 
 impl PartialEq for Term {
     fn eq(&self, other: &Term) -> bool {
-        let (mut a, mut b) = (self, other);
-        loop {
-            return match (a, b) {
-                (Term::Compound(x), Term::Compound(y)) => {
-                    if Arc::ptr_eq(x, y) {
-                        return true;
+        eq_shallow(self, other, SHALLOW)
+    }
+}
+
+/// Nesting depth up to which equality and hashing recurse (into all but the last argument;
+/// the last is followed by a loop, so long lists never count). Deeper parts are walked with an
+/// explicit stack.
+const SHALLOW: u32 = 48;
+
+/// Equality by recursion while shallow, the iterative [`eq_deep`] beyond.
+fn eq_shallow(mut a: &Term, mut b: &Term, budget: u32) -> bool {
+    loop {
+        return match (a, b) {
+            (Term::Compound(x), Term::Compound(y)) => {
+                if Arc::ptr_eq(x, y) {
+                    return true;
+                }
+                if x.name != y.name || x.args.len() != y.args.len() {
+                    return false;
+                }
+                if budget == 0 {
+                    return eq_deep(a, b);
+                }
+                let n = x.args.len();
+                for (p, q) in x.args[..n - 1].iter().zip(&y.args[..n - 1]) {
+                    if !eq_shallow(p, q, budget - 1) {
+                        return false;
                     }
+                }
+                a = &x.args[n - 1];
+                b = &y.args[n - 1];
+                continue;
+            }
+            (Term::Atom(x), Term::Atom(y)) | (Term::Var(x), Term::Var(y)) => x == y,
+            (Term::Int(x), Term::Int(y)) => x == y,
+            (Term::Float(x), Term::Float(y)) => x == y,
+            (Term::Str(x), Term::Str(y)) => x == y,
+            _ => false,
+        };
+    }
+}
+
+/// Equality with an explicit stack (any nesting).
+fn eq_deep(a: &Term, b: &Term) -> bool {
+    let mut stack: Stack<(&Term, &Term)> = smallvec![(a, b)];
+    while let Some((a, b)) = stack.pop() {
+        let same = match (a, b) {
+            (Term::Compound(x), Term::Compound(y)) => {
+                if !Arc::ptr_eq(x, y) {
                     if x.name != y.name || x.args.len() != y.args.len() {
                         return false;
                     }
-                    let n = x.args.len();
-                    if x.args[..n - 1] != y.args[..n - 1] {
-                        return false;
-                    }
-                    a = &x.args[n - 1];
-                    b = &y.args[n - 1];
-                    continue;
+                    stack.extend(x.args.iter().zip(y.args.iter()).rev());
                 }
-                (Term::Atom(x), Term::Atom(y)) | (Term::Var(x), Term::Var(y)) => x == y,
-                (Term::Int(x), Term::Int(y)) => x == y,
-                (Term::Float(x), Term::Float(y)) => x == y,
-                (Term::Str(x), Term::Str(y)) => x == y,
-                _ => false,
-            };
+                true
+            }
+            (Term::Atom(x), Term::Atom(y)) | (Term::Var(x), Term::Var(y)) => x == y,
+            (Term::Int(x), Term::Int(y)) => x == y,
+            (Term::Float(x), Term::Float(y)) => x == y,
+            (Term::Str(x), Term::Str(y)) => x == y,
+            _ => false,
+        };
+        if !same {
+            return false;
         }
     }
+    true
 }
 
 impl Eq for Term {}
 
 impl Hash for Term {
     fn hash<H: Hasher>(&self, state: &mut H) {
-        let mut t = self;
-        loop {
-            std::mem::discriminant(t).hash(state);
-            match t {
-                Term::Atom(s) | Term::Var(s) => s.hash(state),
-                Term::Int(i) => i.hash(state),
-                Term::Float(f) => f.hash(state),
-                Term::Str(s) => s.hash(state),
-                Term::Compound(c) => {
-                    c.name.hash(state);
-                    c.args.len().hash(state);
-                    let n = c.args.len();
-                    for a in &c.args[..n - 1] {
-                        a.hash(state);
-                    }
-                    t = &c.args[n - 1];
-                    continue;
+        hash_shallow(self, state, SHALLOW);
+    }
+}
+
+/// Hashing depth-first, left to right: by recursion while shallow, with an explicit stack
+/// beyond (both write the same sequence, so the hash does not depend on the path taken).
+fn hash_shallow<H: Hasher>(mut t: &Term, state: &mut H, budget: u32) {
+    loop {
+        if budget == 0 {
+            return hash_deep(t, state);
+        }
+        std::mem::discriminant(t).hash(state);
+        match t {
+            Term::Atom(s) | Term::Var(s) => s.hash(state),
+            Term::Int(i) => i.hash(state),
+            Term::Float(f) => f.hash(state),
+            Term::Str(s) => s.hash(state),
+            Term::Compound(c) => {
+                c.name.hash(state);
+                c.args.len().hash(state);
+                let n = c.args.len();
+                for a in &c.args[..n - 1] {
+                    hash_shallow(a, state, budget - 1);
                 }
+                t = &c.args[n - 1];
+                continue;
             }
-            return;
+        }
+        return;
+    }
+}
+
+/// Hashing with an explicit stack (any nesting).
+fn hash_deep<H: Hasher>(t: &Term, state: &mut H) {
+    let mut stack: Stack<&Term> = smallvec![t];
+    while let Some(t) = stack.pop() {
+        std::mem::discriminant(t).hash(state);
+        match t {
+            Term::Atom(s) | Term::Var(s) => s.hash(state),
+            Term::Int(i) => i.hash(state),
+            Term::Float(f) => f.hash(state),
+            Term::Str(s) => s.hash(state),
+            Term::Compound(c) => {
+                c.name.hash(state);
+                c.args.len().hash(state);
+                stack.extend(c.args.iter().rev());
+            }
         }
     }
 }
@@ -241,11 +314,70 @@ impl Term {
 
     /// True when the term contains no variables.
     pub fn is_ground(&self) -> bool {
-        match self {
-            Term::Var(_) => false,
-            Term::Compound(c) => c.args.iter().all(Term::is_ground),
-            _ => true,
+        /// Recursion while shallow; `None` when too deep for it.
+        fn shallow(t: &Term, budget: u32) -> Option<bool> {
+            match t {
+                Term::Var(_) => Some(false),
+                Term::Compound(_) if budget == 0 => None,
+                Term::Compound(c) => {
+                    for a in c.args.iter() {
+                        if !shallow(a, budget - 1)? {
+                            return Some(false);
+                        }
+                    }
+                    Some(true)
+                }
+                _ => Some(true),
+            }
         }
+        if let Some(g) = shallow(self, 64) {
+            return g;
+        }
+        let mut stack: Stack<&Term> = smallvec![self];
+        while let Some(t) = stack.pop() {
+            match t {
+                Term::Var(_) => return false,
+                Term::Compound(c) => stack.extend(c.args.iter()),
+                _ => {}
+            }
+        }
+        true
+    }
+
+    /// A copy of the term for messages: parts nested deeper than `max_depth`, and everything
+    /// after the first `max_nodes` sub-terms, are replaced by the atom `...` (built without
+    /// recursion, so the result is small and shallow whatever the input).
+    pub fn truncated(&self, max_depth: usize, max_nodes: usize) -> Term {
+        enum W<'a> {
+            Visit(&'a Term, usize),
+            Build(Sym, usize),
+        }
+        let ellipsis = || Term::Atom(Sym::intern("..."));
+        let mut nodes = 0usize;
+        let mut work = vec![W::Visit(self, 0)];
+        let mut out: Vec<Term> = Vec::new();
+        while let Some(w) = work.pop() {
+            match w {
+                W::Visit(t, d) => {
+                    nodes += 1;
+                    match t {
+                        Term::Compound(_) if d >= max_depth || nodes > max_nodes => {
+                            out.push(ellipsis())
+                        }
+                        Term::Compound(c) => {
+                            work.push(W::Build(c.name, c.args.len()));
+                            work.extend(c.args.iter().rev().map(|a| W::Visit(a, d + 1)));
+                        }
+                        other => out.push(other.clone()),
+                    }
+                }
+                W::Build(name, n) => {
+                    let args = out.split_off(out.len() - n);
+                    out.push(Term::compound(name, args));
+                }
+            }
+        }
+        out.pop().unwrap_or_else(ellipsis)
     }
 
     /// The items of a proper list, or `None` if the term is not a proper list.
@@ -339,13 +471,13 @@ impl Term {
     /// Var < Number < Atom < String < Compound; numbers by value (Float before Int when equal);
     /// atoms alphabetically; compounds by arity, then name, then arguments left to right.
     pub fn compare(&self, other: &Term) -> Ordering {
-        let (mut a, mut b) = (self, other);
-        loop {
+        let mut stack: Stack<(&Term, &Term)> = smallvec![(self, other)];
+        while let Some((a, b)) = stack.pop() {
             let class = a.order_class().cmp(&b.order_class());
             if class != Ordering::Equal {
                 return class;
             }
-            return match (a, b) {
+            let o = match (a, b) {
                 (Term::Var(x), Term::Var(y)) => x.name().cmp(y.name()),
                 (Term::Int(x), Term::Int(y)) => x.cmp(y),
                 (Term::Float(x), Term::Float(y)) => x.0.total_cmp(&y.0),
@@ -354,28 +486,26 @@ impl Term {
                 (Term::Atom(x), Term::Atom(y)) => x.name().cmp(y.name()),
                 (Term::Str(x), Term::Str(y)) => x.cmp(y),
                 (Term::Compound(x), Term::Compound(y)) => {
+                    if Arc::ptr_eq(x, y) {
+                        continue;
+                    }
                     let head = x
                         .args
                         .len()
                         .cmp(&y.args.len())
                         .then_with(|| x.name.name().cmp(y.name.name()));
-                    if head != Ordering::Equal {
-                        return head;
+                    if head == Ordering::Equal {
+                        stack.extend(x.args.iter().zip(y.args.iter()).rev());
                     }
-                    let n = x.args.len();
-                    for (p, q) in x.args[..n - 1].iter().zip(y.args[..n - 1].iter()) {
-                        let o = p.compare(q);
-                        if o != Ordering::Equal {
-                            return o;
-                        }
-                    }
-                    a = &x.args[n - 1];
-                    b = &y.args[n - 1];
-                    continue;
+                    head
                 }
                 _ => Ordering::Equal,
             };
+            if o != Ordering::Equal {
+                return o;
+            }
         }
+        Ordering::Equal
     }
 }
 

@@ -123,7 +123,12 @@ impl Solver<'_, '_> {
         }
         let mut work = vec![W::Eval(c)];
         let mut vals: Vec<Num> = Vec::new();
+        let (mut steps, limit) = (0usize, self.m.st.step_limit());
         while let Some(w) = work.pop() {
+            // A cyclic expression (`X = f(X), Y is X`) would never end.
+            if self.m.st.runaway(&mut steps, limit, &[c]) {
+                return Err(self.walk_fault());
+            }
             match w {
                 W::Eval(c) => match self.m.st.deref(c) {
                     Cell::Int(i) => vals.push(Num::I(i)),

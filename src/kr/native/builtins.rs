@@ -34,6 +34,7 @@ builtins! {
     Cut "!" [0] false; Comma "," [2] false; Or ";" [2] false; OrBar "|" [2] false;
     IfThen "->" [2] false; SoftIfThen "*->" [2] false; Not "\\+" [1] false; NotWord "not" [1] false;
     Call "call" [1, 2, 3, 4, 5, 6, 7, 8] false; Findall "findall" [3] false; Findall4 "findall" [4] false;
+    Catch "catch" [3] false; Throw "throw" [1] false;
     Between "between" [3] false; Member "member" [2] true; Repeat "repeat" [0] false;
     Once "once" [1] false; Ignore "ignore" [1] false; Forall "forall" [2] false; Caret "^" [2] false;
     Unify "=" [2] false; NotUnify "\\=" [2] false; UnifyOc "unify_with_occurs_check" [2] false;
@@ -83,7 +84,7 @@ builtins! {
     OrdDelElement "ord_del_element" [3] true; OrdSubset "ord_subset" [2] true;
     ListToOrdSet "list_to_ord_set" [2] true; OrdEmpty "ord_empty" [1] true;
     SumEval "$sum_eval" [2] false; MaxEval "$max_eval" [3] false; BagofPrep "$bagof_prep" [4] false;
-    BagofGroups "$bagof_groups" [2] false;
+    BagofGroups "$bagof_groups" [2] false; Protected "$protected" [] false;
 }
 
 /// True when programs may redefine this built-in (SWI library predicates).
@@ -100,6 +101,15 @@ pub(crate) fn library() -> &'static Knowledge {
             for a in arities.iter() {
                 k.table
                     .insert((Sym::intern(name), *a), PredRef::Builtin(*b));
+            }
+        }
+        // Protected predicates called at run time (`call(assert(X))`, a `goal prolog` query)
+        // raise a permission error instead of failing as unknown predicates do.
+        for name in crate::kr::knowledge::protected_names() {
+            for a in 0..=4 {
+                k.table
+                    .entry((Sym::intern(name), a))
+                    .or_insert(PredRef::Builtin(B::Protected));
             }
         }
         for clause in super::prelude::clauses() {

@@ -165,12 +165,18 @@ impl Solver<'_, '_> {
                     Ok(false)
                 }
             }
+            B::Catch => {
+                self.catch(p, next, cut, depth);
+                Ok(true)
+            }
+            B::Throw => Err(self.throw(p)),
+            B::Protected => Err(protected(self.m.st.functor(g))),
             B::Repeat => {
                 self.push_choice(Alt::Repeat, next, cut, depth);
                 self.cont = next;
                 Ok(true)
             }
-            _ => match builtins::det(self, b, g, p)? {
+            _ => match self.det_checked(b, g, p)? {
                 builtins::Flow::Fail => Ok(false),
                 builtins::Flow::True => {
                     self.cont = next;
@@ -182,6 +188,19 @@ impl Solver<'_, '_> {
                 }
             },
         }
+    }
+
+    /// A deterministic built-in, then the memory and output budgets (a built-in may build a
+    /// large term or write much text in one step).
+    fn det_checked(&mut self, b: B, g: Cell, p: u32) -> KrResult<builtins::Flow> {
+        let flow = builtins::det(self, b, g, p)?;
+        let l = self.cx.limits;
+        if self.m.st.heap.len() as u64 > l.max_heap_cells || self.cx.out.len() as u64 > l.max_output
+        {
+            let name = self.m.st.functor(g).map_or((wk::NIL, 0), |f| f);
+            self.check_memory(&|| format!("{}/{}", Term::Atom(name.0), name.1))?;
+        }
+        Ok(flow)
     }
 
     /// `goal` with `extra` arguments appended (for `call/N`, `maplist`, ...).
@@ -208,4 +227,26 @@ impl Solver<'_, '_> {
         all.extend_from_slice(extra);
         Ok(self.m.st.new_struct(name, &all))
     }
+}
+
+/// `error(permission_error(access, private_procedure, Name/Arity), Hint)` for a protected
+/// predicate called at run time, with a hint saying how agents change their beliefs.
+fn protected(f: Option<(Sym, u32)>) -> KrError {
+    let (name, arity) = f.unwrap_or((wk::NIL, 0));
+    let pi = Term::compound("/", vec![Term::Atom(name), Term::Int(arity as i64)]);
+    let hint = if name.name().starts_with("assert") || name.name().starts_with("retract") {
+        "protected in GOAL: agents change beliefs with insert/1 and delete/1 actions"
+    } else {
+        "protected in GOAL: this predicate cannot be called from agent knowledge or queries"
+    };
+    KrError::Iso(Term::compound(
+        "error",
+        vec![
+            Term::compound(
+                "permission_error",
+                vec![Term::atom("access"), Term::atom("private_procedure"), pi],
+            ),
+            Term::compound("context", vec![Term::var("_"), Term::atom(hint)]),
+        ],
+    ))
 }

@@ -2,6 +2,7 @@
 //! the prelude.
 
 use super::arith::compare_cells;
+use super::budget;
 use super::builtins::{goal, inst, int_arg, type_error, Flow, B};
 use super::machine::Solver;
 use super::store::Cell;
@@ -15,6 +16,9 @@ const NIL: Cell = Cell::Atom(wk::NIL);
 /// otherwise).
 fn proper(s: &Solver, c: Cell, name: &str, arity: usize) -> KrResult<Vec<Cell>> {
     let (items, end) = s.m.st.list_items(c);
+    if s.m.st.cyclic.get() {
+        return Err(budget::cyclic_in(name, arity));
+    }
     match end {
         Cell::Atom(n) if n == wk::NIL => Ok(items),
         Cell::Ref(_) => Err(inst(name, arity)),
@@ -108,6 +112,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
                                 2,
                             ));
                         }
+                        budget::reserve(s, 4 * (k - items.len() as i64) as u64, "length", 2)?;
                         let vars: Vec<Cell> =
                             (items.len() as i64..k).map(|_| s.m.st.new_var()).collect();
                         let rest = s.m.st.new_list(&vars, NIL);
@@ -131,6 +136,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
             }
         }
         B::Memberchk => {
+            budget::list_walk(s, s.a(p, 1), "memberchk", 2)?;
             let x = s.a(p, 0);
             let mut l = s.a(p, 1);
             loop {
@@ -257,6 +263,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
             let base = if b == B::Nth0 { 0 } else { 1 };
             match s.ad(p, 0) {
                 Cell::Int(i) => {
+                    budget::list_walk(s, s.a(p, 1), "nth0", 3)?;
                     let mut l = s.a(p, 1);
                     let mut k = i - base;
                     if k < 0 {
@@ -356,6 +363,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
                     3,
                 ));
             }
+            budget::reserve(s, 3 * (hi - lo + 1) as u64, "numlist", 3)?;
             let items: Vec<Cell> = (lo..=hi).map(Cell::Int).collect();
             let y = s.a(p, 2);
             unify_list(s, &items, y)

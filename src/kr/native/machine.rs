@@ -2,6 +2,7 @@
 //! cut barriers, negation as failure, if-then-else, soft cut and all-solutions collection.
 //! Nothing here recurses with the proof depth or the term depth.
 
+use super::budget::CHECK_EVERY;
 use super::code::{Code, Key, UNSET};
 use super::store::{Cell, Store, VarNames};
 use crate::kr::error::{KrError, KrResult, Limits};
@@ -45,6 +46,8 @@ pub(crate) enum Goal {
         bag: u32,
         tmpl: Cell,
     },
+    /// The goal of the `catch/3` whose choicepoint is at this index has exited.
+    CatchExit(u32),
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -77,6 +80,15 @@ pub(crate) enum Alt {
         list: Cell,
     },
     Repeat,
+    /// An active `catch/3`: an error thrown while this choicepoint is on the stack (and
+    /// `active`) is unified with `catcher` and handled by calling `recovery`.
+    Catch {
+        catcher: Cell,
+        recovery: Cell,
+        active: bool,
+    },
+    /// Backtracking into a `catch/3` goal that exited with choicepoints: reactivate the catch.
+    CatchReactivate(u32),
     Dead,
 }
 
@@ -87,9 +99,9 @@ pub(crate) struct Choice {
     trail: u32,
     frames: u32,
     strs: u32,
-    next: u32,
-    cut: u32,
-    depth: u32,
+    pub(crate) next: u32,
+    pub(crate) cut: u32,
+    pub(crate) depth: u32,
 }
 
 /// Answers collected by `findall/3`, kept off the heap so backtracking does not erase them.
@@ -132,7 +144,7 @@ pub(crate) struct Ctx<'a> {
     pub lib: &'static Knowledge,
     pub bases: &'a [&'a FactBase],
     pub goal_facts: &'a [Term],
-    pub limits: Limits,
+    pub limits: &'a Limits,
     pub rng: &'a mut ChaCha8Rng,
     pub out: &'a mut String,
     pub clock: &'a mut super::Clock,
@@ -144,6 +156,8 @@ pub(crate) struct Solver<'a, 'm> {
     pub cx: Ctx<'a>,
     pub cont: u32,
     pub inferences: u64,
+    /// The inference count at which budgets are checked next (see `budget.rs`).
+    pub next_check: u64,
     pub query_vars: Vec<(Sym, Cell)>,
 }
 
@@ -152,6 +166,8 @@ impl<'a, 'm> Solver<'a, 'm> {
     pub fn new(m: &'m mut Machine, cx: Ctx<'a>, goal: &Term, occurs_check: bool) -> Self {
         m.reset();
         m.st.occurs_check = occurs_check;
+        m.st.max_walk = cx.limits.max_heap_cells as usize;
+        let next_check = CHECK_EVERY.min(cx.limits.max_inferences + 1);
         let mut vars = Vec::new();
         let g = m.st.put_term(goal, &mut vars);
         m.frames.push(Frame {
@@ -166,6 +182,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             cx,
             cont: 0,
             inferences: 0,
+            next_check,
             query_vars: vars,
         }
     }
@@ -178,7 +195,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             self.run()?
         };
         if self.m.st.cyclic.get() {
-            return Err(cyclic());
+            return Err(self.walk_fault());
         }
         Ok(found)
     }
@@ -209,13 +226,22 @@ impl<'a, 'm> Solver<'a, 'm> {
             let t = self.m.st.to_term(d, names);
             // `to_term` stops on a cyclic term and raises the flag.
             if self.m.st.cyclic.get() {
-                return Err(cyclic());
+                return Err(self.walk_fault());
             }
             if t != Term::Var(*v) {
                 s.bind(*v, t);
             }
         }
         Ok(s)
+    }
+
+    /// The error for a traversal that gave up (cyclic term, or a walk over the step limit).
+    pub(crate) fn walk_fault(&self) -> KrError {
+        if self.m.st.oversize.get() {
+            let max = self.cx.limits.max_heap_cells;
+            return super::budget::resource("memory", "term traversal".into(), max);
+        }
+        cyclic()
     }
 
     // ---- helpers used by built-ins ----
@@ -294,7 +320,10 @@ impl<'a, 'm> Solver<'a, 'm> {
     pub(crate) fn run(&mut self) -> KrResult<bool> {
         loop {
             if self.m.st.cyclic.get() {
-                return Err(cyclic());
+                let e = self.walk_fault();
+                if self.recover(e)? {
+                    continue;
+                }
             }
             if self.cont == NONE {
                 return Ok(true);
@@ -308,7 +337,10 @@ impl<'a, 'm> Solver<'a, 'm> {
                 self.m.frames.pop();
             }
             let ok = match f.goal {
-                Goal::Call(g) => self.call(g, f.next, f.cut, f.depth, f.pred)?,
+                Goal::Call(g) => match self.call(g, f.next, f.cut, f.depth, f.pred) {
+                    Ok(ok) => ok,
+                    Err(e) => self.recover(e)?,
+                },
                 Goal::CutTo(b) => {
                     self.m.cps.truncate(b as usize);
                     self.cont = f.next;
@@ -333,10 +365,23 @@ impl<'a, 'm> Solver<'a, 'm> {
                     b.items.push((root, vars.len() as u32));
                     false
                 }
+                Goal::CatchExit(b) => {
+                    self.catch_exit(b);
+                    self.cont = f.next;
+                    true
+                }
             };
-            if !ok && !self.backtrack()? {
+            if !ok && !self.backtrack_or_recover()? {
                 return Ok(false);
             }
+        }
+    }
+
+    /// [`Solver::backtrack`], handing an error to the innermost active `catch/3`.
+    fn backtrack_or_recover(&mut self) -> KrResult<bool> {
+        match self.backtrack() {
+            Ok(ok) => Ok(ok),
+            Err(e) => self.recover(e),
         }
     }
 
@@ -344,16 +389,32 @@ impl<'a, 'm> Solver<'a, 'm> {
     pub(crate) fn backtrack(&mut self) -> KrResult<bool> {
         loop {
             if self.m.st.cyclic.get() {
-                return Err(cyclic());
+                return Err(self.walk_fault());
             }
             let Some(ch) = self.m.cps.last().copied() else {
                 return Ok(false);
             };
+            // Resuming an alternative is an inference too: a loop of pure backtracking
+            // (`repeat`, `member/2` on a cyclic list) must meet the budgets.
+            self.inferences += 1;
+            if self.inferences >= self.next_check {
+                self.checkpoint(&|| alt_name(&ch.alt))?;
+            }
             self.restore(&ch);
             let b = self.m.cps.len() as u32 - 1;
             match ch.alt {
-                Alt::Dead => {
+                Alt::Dead | Alt::Catch { .. } => {
                     self.m.cps.pop();
+                }
+                Alt::CatchReactivate(c) => {
+                    self.m.cps.pop();
+                    if let Some(Choice {
+                        alt: Alt::Catch { active, .. },
+                        ..
+                    }) = self.m.cps.get_mut(c as usize)
+                    {
+                        *active = true;
+                    }
                 }
                 Alt::Goal(g) => {
                     self.m.cps.pop();
@@ -479,11 +540,8 @@ impl<'a, 'm> Solver<'a, 'm> {
             }
         };
         self.inferences += 1;
-        if self.inferences > self.cx.limits.max_inferences {
-            return Err(KrError::Budget {
-                predicate: format!("{}/{}", Term::Atom(name), arity),
-                limit: self.cx.limits.max_inferences,
-            });
+        if self.inferences >= self.next_check {
+            self.checkpoint(&|| format!("{}/{}", Term::Atom(name), arity))?;
         }
         let pred = match pred {
             Some(r) => Some(r),
@@ -661,5 +719,16 @@ impl<'a, 'm> Solver<'a, 'm> {
         }
         self.cont = nx;
         true
+    }
+}
+
+/// The predicate behind a choicepoint, for budget messages.
+fn alt_name(alt: &Alt) -> String {
+    match alt {
+        Alt::Between { .. } => "between/3".into(),
+        Alt::Member { .. } => "member/2".into(),
+        Alt::Repeat => "repeat/0".into(),
+        Alt::Clauses { .. } | Alt::Facts { .. } => "backtracking into a predicate".into(),
+        _ => "backtracking".into(),
     }
 }

@@ -3,7 +3,9 @@
 //! built-ins (`builtins`, `arith`, `text`, `lists`, `output`, `prelude`).
 
 pub(crate) mod arith;
+pub(crate) mod budget;
 pub(crate) mod builtins;
+pub(crate) mod catch;
 pub(crate) mod code;
 pub(crate) mod control;
 pub(crate) mod facts;
@@ -102,7 +104,7 @@ impl NativeEngine {
                 lib,
                 bases: view.bases,
                 goal_facts: view.goal_facts,
-                limits: self.limits,
+                limits: &self.limits,
                 rng: &mut self.rng,
                 out: &mut self.output,
                 clock: &mut self.clock,
@@ -114,6 +116,7 @@ impl NativeEngine {
                 first = false;
                 n += 1;
                 let answer = if convert { s.answer()? } else { Subst::new() };
+                s.check_answers(n as u64)?;
                 if !each(answer) {
                     break;
                 }

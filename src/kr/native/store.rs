@@ -2,6 +2,7 @@
 //! order, and conversion from and to [`Term`]. Everything is iterative (explicit work stacks), so
 //! deeply nested terms cannot overflow the Rust stack.
 
+use crate::kr::fxhash::FxHashMap;
 use crate::term::{well_known as wk, Float, Sym, Term};
 use std::cmp::Ordering;
 use std::sync::Arc;
@@ -31,37 +32,76 @@ pub(crate) struct Store {
     /// Scratch stacks for [`super::code::Code`] (kept to avoid allocating per call).
     pub code_pairs: Vec<(Cell, Cell)>,
     pub build_work: Vec<(u32, u32)>,
-    /// Set when a traversal met a cyclic term and gave up; the solver turns it into an error.
+    /// Set when a traversal met a cyclic term (or an overlong one) and gave up; the solver
+    /// turns it into an error.
     pub cyclic: std::cell::Cell<bool>,
+    /// Set with `cyclic` when the traversal gave up because it exceeded `max_walk` steps
+    /// (a term with so much sharing that walking it as a tree would never end).
+    pub oversize: std::cell::Cell<bool>,
+    /// Most steps one traversal may take (0: no limit).
+    pub max_walk: usize,
+    /// Cells converted to terms by [`Store::to_term`] since the query started (answers count
+    /// against the memory budget).
+    pub converted: std::cell::Cell<u64>,
 }
 
 /// Names given to unbound variables when answers are converted back to terms.
 pub(crate) struct VarNames {
     /// Heap address of a variable and the name it gets in the answer.
-    pub named: Vec<(u32, Sym)>,
+    named: Vec<(u32, Sym)>,
+    /// `named` hashed, once it is long (an answer can hold many unbound variables).
+    index: Option<FxHashMap<u32, Sym>>,
     fresh: usize,
 }
+
+/// Names searched linearly up to this many; hashed beyond.
+const LINEAR_NAMES: usize = 32;
 
 impl VarNames {
     /// Names for a query whose variables live at the given addresses.
     pub fn new(query_vars: &[(Sym, Cell)]) -> VarNames {
-        let named = query_vars
-            .iter()
-            .filter_map(|(s, c)| match c {
-                Cell::Ref(a) => Some((*a, *s)),
-                _ => None,
-            })
-            .collect();
-        VarNames { named, fresh: 0 }
+        let mut names = VarNames {
+            named: Vec::new(),
+            index: None,
+            fresh: 0,
+        };
+        for (s, c) in query_vars {
+            if let Cell::Ref(a) = c {
+                if names.find(*a).is_none() {
+                    names.add(*a, *s);
+                }
+            }
+        }
+        names
+    }
+
+    fn find(&self, addr: u32) -> Option<Sym> {
+        match &self.index {
+            Some(m) => m.get(&addr).copied(),
+            None => self.named.iter().find(|(a, _)| *a == addr).map(|(_, s)| *s),
+        }
+    }
+
+    fn add(&mut self, addr: u32, s: Sym) {
+        self.named.push((addr, s));
+        match &mut self.index {
+            Some(m) => {
+                m.insert(addr, s);
+            }
+            None if self.named.len() > LINEAR_NAMES => {
+                self.index = Some(self.named.iter().copied().collect());
+            }
+            None => {}
+        }
     }
 
     fn name(&mut self, addr: u32) -> Sym {
-        if let Some((_, s)) = self.named.iter().find(|(a, _)| *a == addr) {
-            return *s;
+        if let Some(s) = self.find(addr) {
+            return s;
         }
         let s = Sym::intern(&format!("_R{}", self.fresh));
         self.fresh += 1;
-        self.named.push((addr, s));
+        self.add(addr, s);
         s
     }
 }
@@ -70,6 +110,8 @@ impl Store {
     /// Forgets everything (keeps the allocations).
     pub fn reset(&mut self) {
         self.cyclic.set(false);
+        self.oversize.set(false);
+        self.converted.set(0);
         self.heap.clear();
         self.trail.clear();
         self.strs.clear();
@@ -84,10 +126,12 @@ impl Store {
             return false;
         }
         let cyc = roots.iter().any(|r| self.is_cyclic(*r));
-        if cyc {
+        let over = self.max_walk > 0 && *steps > self.max_walk;
+        if cyc || over {
+            self.oversize.set(!cyc);
             self.cyclic.set(true);
         }
-        cyc
+        cyc || over
     }
 
     /// A step limit for a traversal starting now.
@@ -193,11 +237,19 @@ impl Store {
 
     /// The items of a list and what it ends in (dereferenced): `[]` for a proper list, an unbound
     /// variable for a partial list, anything else for a non-list.
+    /// A cyclic list (`L = [a|L]`) sets the `cyclic` flag and ends in `[]` after as many
+    /// items as the heap could hold, so the walk always stops.
     pub fn list_items(&self, mut c: Cell) -> (Vec<Cell>, Cell) {
         let mut items = Vec::new();
+        // An acyclic list has at most one cell per three heap cells.
+        let bound = self.heap.len() / 3 + 1;
         loop {
             match self.cons(c) {
                 Some((h, t)) => {
+                    if items.len() > bound {
+                        self.cyclic.set(true);
+                        return (items, Cell::Atom(wk::NIL));
+                    }
                     items.push(h);
                     c = t;
                 }
@@ -413,6 +465,7 @@ impl Store {
                 }
             }
         }
+        self.converted.set(self.converted.get() + steps as u64);
         out.pop().unwrap_or(Term::Atom(wk::NIL))
     }
 
@@ -599,21 +652,39 @@ impl Store {
         }
     }
 
-    /// True when the term is cyclic (possible without the occurs check, e.g. `X = f(X)`):
-    /// an acyclic term is never deeper than the heap has cells.
+    /// True when the term is cyclic (possible without the occurs check, e.g. `X = f(X)`).
+    /// A depth-first walk that marks the compound cells on its path; shared sub-terms are
+    /// visited once, so the time is linear in the number of distinct cells.
     pub fn is_cyclic(&self, c: Cell) -> bool {
         if !matches!(self.deref(c), Cell::Ptr(_)) {
             return false;
         }
-        let limit = self.heap.len() + 1;
-        let mut stack = vec![(c, 1usize)];
-        while let Some((c, d)) = stack.pop() {
-            if d > limit {
-                return true;
+        // false: on the current path; true: finished (known acyclic).
+        let mut state: FxHashMap<u32, bool> = FxHashMap::default();
+        // (compound address, next argument to visit)
+        let mut path: Vec<(u32, u32)> = Vec::new();
+        let Cell::Ptr(root) = self.deref(c) else {
+            return false;
+        };
+        state.insert(root, false);
+        path.push((root, 0));
+        while let Some(&mut (p, ref mut i)) = path.last_mut() {
+            let n = self.heap[p as usize].fun().map_or(0, |f| f.1);
+            if *i >= n {
+                state.insert(p, true);
+                path.pop();
+                continue;
             }
-            if let Cell::Ptr(p) = self.deref(c) {
-                if let Cell::Fun(_, n) = self.heap[p as usize] {
-                    stack.extend((0..n).map(|i| (self.arg(p, i), d + 1)));
+            let arg = self.arg(p, *i);
+            *i += 1;
+            if let Cell::Ptr(q) = self.deref(arg) {
+                match state.get(&q) {
+                    Some(false) => return true,
+                    Some(true) => {}
+                    None => {
+                        state.insert(q, false);
+                        path.push((q, 0));
+                    }
                 }
             }
         }

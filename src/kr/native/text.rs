@@ -198,11 +198,15 @@ fn concat(s: &mut Solver, p: u32, k: Kind, name: &str) -> KrResult<Flow> {
     if !is_var(s, p, 0) && !is_var(s, p, 1) {
         let a = need_text(s, p, 0, name, 3)?;
         let b = need_text(s, p, 1, name, 3)?;
+        super::budget::text_len(s, (a.len() + b.len()) as u64, name, 3)?;
         let r = make(s, k, &(a + &b));
         let z = s.a(p, 2);
         return Ok(unify_flow(s, z, r));
     }
     let whole = need_text(s, p, 2, name, 3)?;
+    // Every split is made: quadratic in the length.
+    let n = whole.len() as u64;
+    super::budget::text_len(s, n * (n + 1) / 2, name, 3)?;
     let mut alts = Vec::new();
     for (i, _) in whole
         .char_indices()
