@@ -7,7 +7,8 @@
 
 use goal::diag::Diagnostic;
 use goal::syntax::prolog::{Located, Reader};
-use goal::term::{Subst, Sym, Term};
+use goal::term::print::{Options, MESSAGE_DEPTH};
+use goal::term::{Style, Subst, Sym, Term};
 use std::io::{self, BufRead, IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -163,38 +164,37 @@ pub fn named_vars(query: &Term) -> Vec<Sym> {
         .collect()
 }
 
-/// One answer line: `X = a, Y = [b,c]`, or `true` when there are no named variables.
+/// One answer line: `X = a, Y = [b,c]`, or `true` when there are no named variables. Values are
+/// written as SWI-Prolog's top level writes them: `writeq` text at priority 699, so operators
+/// are bracketed (`X = (a:-b)`, `O = (>)`); unbound variables are written `_`.
 pub fn answer_line(vars: &[Sym], answer: &Subst) -> String {
     if vars.is_empty() {
         return "true".into();
     }
+    let options = Options {
+        priority: 699,
+        anonymous_vars: true,
+        ..Options::new(Style::WRITEQ)
+    };
     vars.iter()
         .map(|v| {
-            let value = answer.apply(&Term::Var(*v));
-            format!("{} = {}", v.name(), unbound_as_underscore(&value))
+            // The native engine's answers are fully resolved: one walk finds the value.
+            let var = Term::Var(*v);
+            let value = answer.walk(&var);
+            format!("{} = {}", v.name(), value.to_text_with(options))
         })
         .collect::<Vec<_>>()
         .join(", ")
 }
 
-/// The line for an error: the error term when it is `error(...)`, else `error: Term`.
+/// The line for an error: the error term when it is `error(...)`, else `error: Term`. The term
+/// is cut off at depth [`MESSAGE_DEPTH`] (`...`), so a huge culprit cannot flood the output.
 pub fn error_line(error: &Term) -> String {
-    let text = error.to_string();
+    let text = error.to_text_limited(MESSAGE_DEPTH);
     if text.starts_with("error") {
         text
     } else {
         format!("error: {text}")
-    }
-}
-
-/// Replaces every variable by `_` (answers show unbound values as `_`).
-fn unbound_as_underscore(t: &Term) -> Term {
-    match t {
-        Term::Var(_) => Term::var("_"),
-        Term::Compound(c) if !t.is_ground() => {
-            Term::compound(c.name, c.args.iter().map(unbound_as_underscore).collect())
-        }
-        other => other.clone(),
     }
 }
 

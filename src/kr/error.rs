@@ -101,7 +101,7 @@ impl fmt::Display for KrError {
                     "proof depth limit of {limit} exceeded (while calling {predicate})"
                 )
             }
-            KrError::Iso(t) => write!(f, "{t}"),
+            KrError::Iso(t) => f.write_str(&t.to_text_limited(crate::term::print::MESSAGE_DEPTH)),
             KrError::Load(errs) => {
                 for (i, e) in errs.iter().enumerate() {
                     if i > 0 {

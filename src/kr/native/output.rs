@@ -14,34 +14,10 @@ use std::sync::Arc;
 /// Largest column or repeat count a format directive may use.
 const MAX_FORMAT_COUNT: i64 = 100_000;
 
-/// Deepest term the printer is asked to write (it recurses on nesting, except along list
-/// tails).
-const MAX_PRINT_DEPTH: usize = 10_000;
-
-/// A heap term as text in the given style (a resource error for terms nested too deeply to
-/// print safely).
+/// A heap term as text in the given style (the writer is iterative: any depth prints).
 pub(crate) fn text(s: &Solver, c: Cell, style: Style) -> KrResult<String> {
     if s.m.st.is_cyclic(c) {
         return Err(super::machine::cyclic());
-    }
-    let mut stack = vec![(c, 1usize)];
-    while let Some((c, d)) = stack.pop() {
-        if d > MAX_PRINT_DEPTH {
-            return Err(KrError::iso(
-                Term::compound("resource_error", vec![Term::atom("print_depth")]),
-                None,
-            ));
-        }
-        if let Cell::Ptr(p) = s.m.st.deref(c) {
-            match s.m.st.heap[p as usize].fun() {
-                Some((f, 2)) if f == wk::DOT => {
-                    stack.push((s.a(p, 0), d + 1));
-                    stack.push((s.a(p, 1), d));
-                }
-                Some((_, n)) => stack.extend((0..n).map(|i| (s.a(p, i), d + 1))),
-                None => {}
-            }
-        }
     }
     Ok(s.m.st.to_term(c, &mut VarNames::new(&[])).to_text(style))
 }

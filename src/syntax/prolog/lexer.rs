@@ -12,9 +12,9 @@ enum Raw {
     #[regex(r"%[^\n]*", logos::skip)]
     #[token("/*", block_comment)]
     Comment,
-    #[regex(r"[a-z][a-zA-Z0-9_]*")]
+    #[regex(r"\p{Lowercase}[\p{Alphabetic}\p{N}_]*")]
     Name,
-    #[regex(r"[A-Z_][a-zA-Z0-9_]*")]
+    #[regex(r"[\p{Uppercase}\p{Lt}_][\p{Alphabetic}\p{N}_]*")]
     Var,
     #[regex(r"[0-9][0-9_]*")]
     Int,
