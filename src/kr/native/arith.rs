@@ -104,10 +104,8 @@ fn int_pow(base: i64, exp: i64) -> KrResult<Num> {
             1 => Ok(Num::I(1)),
             -1 => Ok(Num::I(if exp % 2 == 0 { 1 } else { -1 })),
             0 => Err(eval_err("zero_divisor")),
-            _ => Err(KrError::iso(
-                Term::compound("type_error", vec![Term::atom("float"), Term::Int(base)]),
-                None,
-            )),
+            // SWI (prefer_rationals false): a negative power of another integer is a float.
+            _ => check_float((base as f64).powf(exp as f64)),
         };
     }
     let e = u32::try_from(exp).map_err(|_| overflow())?;
@@ -344,20 +342,12 @@ fn eval2(f: Sym, x: Num, y: Num) -> KrResult<Num> {
                 q
             })
         }
-        ("min", _, _) => {
-            if cmp_num(y, x) == Ordering::Less {
-                y
-            } else {
-                x
-            }
-        }
-        ("max", _, _) => {
-            if cmp_num(y, x) == Ordering::Greater {
-                y
-            } else {
-                x
-            }
-        }
+        // Equal values of mixed types give the float, as in SWI (`max(1, 1.0)` is `1.0`).
+        ("min" | "max", _, _) => match (cmp_num(y, x), f.name(), y) {
+            (Ordering::Less, "min", _) | (Ordering::Greater, "max", _) => y,
+            (Ordering::Equal, _, F(_)) => y,
+            _ => x,
+        },
         ("**", I(a), I(b)) => {
             if b < 0 {
                 check_float((a as f64).powf(b as f64))?

@@ -69,7 +69,7 @@ builtins! {
     WriteTerm "write_term" [2, 3] false;
     Nl "nl" [0, 1] false; Format "format" [1, 2, 3] false; PrintMessage "print_message" [2] false;
     GetTime "get_time" [1] false;
-    Length "length" [2] true; Memberchk "memberchk" [2] true; Reverse "reverse" [2] true;
+    Length "length" [2] true; Delete "delete" [3] true; Memberchk "memberchk" [2] true; Reverse "reverse" [2] true;
     Msort "msort" [2] true; Sort "sort" [2] false; Sort4 "sort" [4] false; Keysort "keysort" [2] false;
     Predsort "predsort" [3] true;
     Nth0 "nth0" [3] true; Nth1 "nth1" [3] true; SumList "sum_list" [2] true; SumList2 "sumlist" [2] true;
@@ -82,6 +82,9 @@ builtins! {
     OrdInsert "ord_insert" [3] true; OrdAddElement "ord_add_element" [3] true;
     OrdDelElement "ord_del_element" [3] true; OrdSubset "ord_subset" [2] true;
     ListToOrdSet "list_to_ord_set" [2] true; OrdEmpty "ord_empty" [1] true;
+    RandomSelect "random_select" [3] true; Randseq "randseq" [3] true; Randset "randset" [3] true;
+    CharType "char_type" [2] false; CodeType "code_type" [2] false;
+    TextToString "text_to_string" [2] false;
     SumEval "$sum_eval" [2] false; MaxEval "$max_eval" [3] false; BagofPrep "$bagof_prep" [4] false;
     BagofGroups "$bagof_groups" [2] false;
 }
@@ -291,6 +294,9 @@ pub(crate) fn det(s: &mut Solver, b: B, g: Cell, p: u32) -> KrResult<Flow> {
                 return Ok(f);
             }
             if let Some(f) = output::det(s, b, p, arity)? {
+                return Ok(f);
+            }
+            if let Some(f) = super::library::det(s, b, p)? {
                 return Ok(f);
             }
             Flow::Fail

@@ -230,10 +230,10 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
                     (_, n) => seg_col + n.unwrap_or(8) as usize,
                 };
                 if target > col {
-                    let pad = target - col;
-                    let (pos, ch) = fills.first().copied().unwrap_or((out.len(), fill));
-                    let padding: String = std::iter::repeat_n(ch, pad).collect();
-                    out.insert_str(pos, &padding);
+                    if fills.is_empty() {
+                        fills.push((out.len(), fill));
+                    }
+                    distribute_pad(&mut out, &fills, target - col);
                 }
                 seg_start = out.len();
                 fills.clear();
@@ -245,6 +245,18 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
         return Err(format_error("too many arguments"));
     }
     Ok(out)
+}
+
+/// Spreads `pad` fill characters over the fill points of a column (`~t`), as SWI does: evenly,
+/// the remainder going to the leftmost points.
+fn distribute_pad(out: &mut String, fills: &[(usize, char)], pad: usize) {
+    let (each, extra) = (pad / fills.len(), pad % fills.len());
+    // Right to left, so earlier positions stay valid.
+    for (i, (pos, ch)) in fills.iter().enumerate().rev() {
+        let n = each + usize::from(i < extra);
+        let padding: String = std::iter::repeat_n(*ch, n).collect();
+        out.insert_str(*pos, &padding);
+    }
 }
 
 fn format_args(s: &Solver, c: Cell) -> Vec<Cell> {

@@ -172,7 +172,7 @@ fn is_var(s: &Solver, p: u32, i: u32) -> bool {
 }
 
 /// Enumerates the given alternatives for the arguments listed: `member(Args, [Alt...])`.
-fn enumerate(s: &mut Solver, args: &[Cell], alts: Vec<Vec<Cell>>) -> Flow {
+pub(crate) fn enumerate(s: &mut Solver, args: &[Cell], alts: Vec<Vec<Cell>>) -> Flow {
     let f = Sym::intern("$alt");
     let target = s.m.st.new_struct(f, args);
     let items: Vec<Cell> = alts.into_iter().map(|a| s.m.st.new_struct(f, &a)).collect();
@@ -427,11 +427,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
                 _ => ("string_lower", false, Kind::Str),
             };
             let t = need_text(s, p, 0, name, 2)?;
-            let r = if up {
-                t.to_uppercase()
-            } else {
-                t.to_lowercase()
-            };
+            let r = change_case(&t, up);
             let v = make(s, k, &r);
             let y = s.a(p, 1);
             unify_flow(s, y, v)
@@ -569,4 +565,22 @@ fn read_term(
         .filter(|(v, _)| !v.name().starts_with('_'))
         .collect();
     Ok((c, named))
+}
+
+/// Maps each character to its upper or lower case as C's `towupper`/`towlower` (and so SWI)
+/// do: one character for one, keeping those whose case form is longer (`ß` stays `ß`).
+fn change_case(text: &str, up: bool) -> String {
+    text.chars()
+        .map(|c| {
+            let mut mapped: Vec<char> = if up {
+                c.to_uppercase().collect()
+            } else {
+                c.to_lowercase().collect()
+            };
+            match mapped.len() {
+                1 => mapped.pop().unwrap_or(c),
+                _ => c,
+            }
+        })
+        .collect()
 }
