@@ -21,11 +21,14 @@ pub struct Args {
     /// The query; without it, queries are read from standard input, one per line.
     #[arg(short, long)]
     pub query: Option<String>,
+    /// Seed of the random generator behind `random/1`, `random_between/3`, ... (default 0).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
 }
 
 /// Runs `goal prolog`.
 pub fn main(args: Args) -> ExitCode {
-    let kb = match load_files(&args.files) {
+    let kb = match load_files(&args.files, args.seed) {
         Ok(kb) => kb,
         Err(()) => return ExitCode::from(1),
     };
@@ -71,7 +74,7 @@ fn repl(kb: &engine::Kb, out: &mut impl Write) -> ExitCode {
 }
 
 /// Loads and compiles the files; prints diagnostics to stderr. `Err` when anything failed.
-fn load_files(files: &[PathBuf]) -> Result<engine::Kb, ()> {
+fn load_files(files: &[PathBuf], seed: u64) -> Result<engine::Kb, ()> {
     let mut sources: Vec<(String, String, Vec<Located>)> = Vec::new();
     let mut failed = false;
     for path in files {
@@ -98,7 +101,7 @@ fn load_files(files: &[PathBuf]) -> Result<engine::Kb, ()> {
         .iter()
         .flat_map(|(_, _, cs)| cs.iter().map(|c| c.term.clone()))
         .collect();
-    engine::Kb::load(&clauses).map_err(|errors| {
+    engine::Kb::load(&clauses, seed).map_err(|errors| {
         for (index, message) in errors {
             // Point at the clause in its file when the loader names one.
             let mut k = index;
@@ -213,11 +216,11 @@ mod engine {
 
     impl Kb {
         /// Compiles clauses; on failure, (clause index, message) for every rejected clause.
-        pub fn load(clauses: &[Term]) -> Result<Kb, Vec<(usize, String)>> {
+        pub fn load(clauses: &[Term], seed: u64) -> Result<Kb, Vec<(usize, String)>> {
             match Knowledge::load(clauses) {
                 Ok(knowledge) => Ok(Kb {
                     knowledge,
-                    engine: RefCell::new(NativeEngine::default()),
+                    engine: RefCell::new(NativeEngine::new(seed)),
                 }),
                 Err(KrError::Load(errors)) => {
                     Err(errors.into_iter().map(|e| (e.clause, e.message)).collect())
