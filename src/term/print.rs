@@ -195,6 +195,12 @@ fn lead(mut t: &Term, mut prio: u16) -> Lead {
     loop {
         match t {
             Term::Int(i) => return if *i >= 0 { Lead::Digit } else { Lead::Other },
+            Term::BigInt(b) => {
+                return match b.sign() {
+                    num_bigint::Sign::Minus => Lead::Other,
+                    _ => Lead::Digit,
+                }
+            }
             Term::Float(f) if f.0 >= 0.0 && f.0.is_finite() => return Lead::Digit,
             Term::Atom(a) if prio < 1200 && ops::is_operator(a.name()) => return Lead::Paren(0),
             Term::Compound(c) if c.args.len() == 2 && c.name != wk::DOT && c.name != wk::BAR => {
@@ -294,6 +300,7 @@ impl Writer {
             Term::Var(_) if self.o.anonymous_vars => self.token("_"),
             Term::Var(v) => self.token(v.name()),
             Term::Int(i) => self.token(&i.to_string()),
+            Term::BigInt(b) => self.token(&b.to_string()),
             Term::Float(f) => self.token(&format_float(f.0)),
             Term::Str(s) => {
                 if self.o.style.quoted {

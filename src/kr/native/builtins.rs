@@ -252,8 +252,11 @@ pub(crate) fn det(s: &mut Solver, b: B, g: Cell, p: u32) -> KrResult<Flow> {
         B::Var => bool_flow(matches!(s.ad(p, 0), Cell::Ref(_))),
         B::Nonvar => bool_flow(!matches!(s.ad(p, 0), Cell::Ref(_))),
         B::Atom => bool_flow(matches!(s.ad(p, 0), Cell::Atom(_))),
-        B::Number => bool_flow(matches!(s.ad(p, 0), Cell::Int(_) | Cell::Flt(_))),
-        B::Integer => bool_flow(matches!(s.ad(p, 0), Cell::Int(_))),
+        B::Number => bool_flow(matches!(
+            s.ad(p, 0),
+            Cell::Int(_) | Cell::Flt(_) | Cell::Big(_)
+        )),
+        B::Integer => bool_flow(matches!(s.ad(p, 0), Cell::Int(_) | Cell::Big(_))),
         B::Float => bool_flow(matches!(s.ad(p, 0), Cell::Flt(_))),
         B::Atomic => bool_flow(!matches!(s.ad(p, 0), Cell::Ref(_) | Cell::Ptr(_))),
         B::Compound => bool_flow(matches!(s.ad(p, 0), Cell::Ptr(_))),

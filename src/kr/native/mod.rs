@@ -3,6 +3,7 @@
 //! built-ins (`builtins`, `arith`, `text`, `lists`, `output`, `prelude`, `library`).
 
 pub(crate) mod arith;
+pub(crate) mod bigint;
 pub(crate) mod builtins;
 pub(crate) mod code;
 pub(crate) mod control;

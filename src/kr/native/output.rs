@@ -119,10 +119,17 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
             }
             'd' | 'D' => {
                 let a = next_arg("d")?;
-                let Cell::Int(v) = s.m.st.deref(a) else {
-                    return Err(format_error("~d expects an integer argument"));
+                let (negative, mut digits) = match s.m.st.deref(a) {
+                    Cell::Int(v) => (v < 0, v.unsigned_abs().to_string()),
+                    Cell::Big(i) => {
+                        let text = &s.m.st.strs[i as usize];
+                        (
+                            text.starts_with('-'),
+                            text.trim_start_matches('-').to_string(),
+                        )
+                    }
+                    _ => return Err(format_error("~d expects an integer argument")),
                 };
-                let mut digits = v.unsigned_abs().to_string();
                 let group = d == 'D';
                 let dec = num.unwrap_or(0).max(0) as usize;
                 let mut frac = String::new();
@@ -142,7 +149,7 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
                     }
                     digits = g;
                 }
-                if v < 0 {
+                if negative {
                     out.push('-');
                 }
                 out.push_str(&digits);
@@ -159,6 +166,7 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
                     _ => s.eval(a).map(|n| match n {
                         super::arith::Num::I(v) => v as f64,
                         super::arith::Num::F(v) => v,
+                        n @ super::arith::Num::B(_) => n.f(),
                     })?,
                 };
                 let prec = num.unwrap_or(6).clamp(0, 60) as usize;

@@ -190,7 +190,12 @@ fn gen_term(rng: &mut ChaCha8Rng, depth: u32) -> Term {
             2 => Term::from(rng.gen_range(-100.0..100.0f64)),
             3 => Term::var(["X", "Y", "_Z", "Abc"][rng.gen_range(0..4)]),
             4 => Term::string(["", "s", "a\"b", "line\nbreak"][rng.gen_range(0..4)]),
-            5 => Term::Int(i64::MIN + 1),
+            5 => [
+                Term::Int(i64::MIN + 1),
+                Term::integer(num_bigint::BigInt::from(i64::MAX) * 1000),
+                Term::integer(-num_bigint::BigInt::from(i64::MAX) * 7),
+            ][rng.gen_range(0..3)]
+            .clone(),
             _ => Term::from([0.5, 1e15, 2.5e-7, 1e300, -0.0][rng.gen_range(0..5)]),
         };
     }
