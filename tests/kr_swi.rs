@@ -425,3 +425,31 @@ fn undefined_predicates_get_did_you_mean_hints() {
         .collect();
     assert!(!codes.contains(&"E0121".to_string()), "{codes:?}");
 }
+
+#[test]
+fn goal_prolog_warns_about_undefined_goals_with_did_you_mean() {
+    let file = helpers_file("warn");
+    let out = Command::new(env!("CARGO_BIN_EXE_goal"))
+        .arg("prolog")
+        .arg(&file)
+        .arg("-q")
+        .arg("lenght([a], N) ; \\+ cmpp(a, b, c) ; zzqq")
+        .output()
+        .expect("run goal prolog");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(
+        stderr.lines().collect::<Vec<_>>(),
+        [
+            "warning: `lenght/2` is not defined, so it fails (did you mean `length/2`?)",
+            "warning: `cmpp/3` is not defined, so it fails (did you mean `cmp/3`?)",
+            "warning: `zzqq/0` is not defined, so it fails",
+        ]
+    );
+    // The undefined goals fail; `\+` of one succeeds.
+    assert_eq!(String::from_utf8_lossy(&out.stdout).trim(), "N = _");
+    assert_eq!(
+        run(&file, "cmp(O, 1, 2), length([a], N)", None),
+        "O = (<), N = 1"
+    );
+    let _ = std::fs::remove_dir_all(file.parent().unwrap_or(&file));
+}

@@ -135,6 +135,9 @@ fn run_query(kb: &engine::Kb, text: &str, file: &str, out: &mut impl Write) -> R
             return Err(());
         }
     };
+    for warning in kb.undefined_goals(&query) {
+        eprintln!("warning: {warning}");
+    }
     let vars = named_vars(&query);
     let (answers, error, output) = kb.solve(&query);
     if !output.is_empty() {
@@ -203,6 +206,7 @@ pub fn error_line(error: &Term) -> String {
 
 /// The knowledge base behind the command: the native engine with the agents' default limits.
 mod engine {
+    use goal::kr::native::library;
     use goal::kr::{Engine, FactBase, Knowledge, KrError, NativeEngine, View};
     use goal::term::{Subst, Term};
     use std::cell::RefCell;
@@ -227,6 +231,43 @@ mod engine {
                 }
                 Err(e) => Err(vec![(usize::MAX, e.to_string())]),
             }
+        }
+
+        /// A warning for each goal of `query` that nothing defines (it fails, as GOAL's
+        /// undefined predicates do), with a "did you mean" for a near name.
+        pub fn undefined_goals(&self, query: &Term) -> Vec<String> {
+            let mut out = Vec::new();
+            let mut stack = vec![query];
+            while let Some(g) = stack.pop() {
+                let Some((name, arity)) = g.functor() else {
+                    continue;
+                };
+                let args = g.args();
+                match (name.name(), arity) {
+                    ("," | ";" | "->" | "*->" | "|", 2) => stack.extend(args.iter().rev()),
+                    ("\\+" | "not" | "once" | "ignore" | "call", 1) => stack.push(&args[0]),
+                    ("findall" | "forall" | "aggregate_all" | "bagof" | "setof", _)
+                        if arity >= 2 =>
+                    {
+                        stack.push(&args[1])
+                    }
+                    _ if self.knowledge.resolves(name, arity)
+                        || library::is_known(name.name(), arity) => {}
+                    _ => {
+                        let own = self.knowledge.predicates();
+                        let own = own.iter().map(|(n, a)| (n.name(), *a));
+                        let hint = match library::suggest(name.name(), arity, own) {
+                            Some(s) => format!(" (did you mean `{s}`?)"),
+                            None => String::new(),
+                        };
+                        out.push(format!(
+                            "`{}/{arity}` is not defined, so it fails{hint}",
+                            name.name()
+                        ));
+                    }
+                }
+            }
+            out
         }
 
         /// All answers of `query`, the error that stopped it (if any), and the text written by
