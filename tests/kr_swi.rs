@@ -88,6 +88,22 @@ const TABLE: &[(&str, &str)] = &[
     ("format(\"~p~n\", ['A b'])", "'A b'|true"),
     ("format(atom(A), \"~w-~w\", [a, b])", "A = 'a-b'"),
     ("tab(2), write(x), nl", "  x|true"),
+    (
+        "write_term(f('A', [1,2,3,4,5]), [quoted(true)])",
+        "f('A',[1,2,3,4,5])|true",
+    ),
+    (
+        "write_term(f('A', 1+2), [ignore_ops(true)])",
+        "f(A,+(1,2))|true",
+    ),
+    (
+        "write_term([1,2,3,4,5,6,7,8,9,10,11,12], [max_depth(5)])",
+        "[1,2,3,4,5|...]|true",
+    ),
+    (
+        "write_term(a(s(s(s(s(0)))), [a,b,c,d,e,f]), [max_depth(3)])",
+        "a(s(s(...)),[a,b|...])|true",
+    ),
     // ---- arithmetic ----
     ("X is 2 ^ -1", "X = 0.5"),
     ("X is 2 ** -1", "X = 0.5"),

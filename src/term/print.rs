@@ -431,7 +431,8 @@ impl Writer {
     fn tail<'t>(&mut self, t: &'t Term, depth: usize, index: usize, jobs: &mut Vec<Job<'t>>) {
         match t {
             Term::Compound(c) if c.name == wk::DOT && c.args.len() == 2 => {
-                if self.o.max_depth > 0 && depth + index + 1 >= self.o.max_depth {
+                // SWI shows `max_depth - depth + 1` items of a list at `depth`.
+                if self.o.max_depth > 0 && depth + index + 1 > self.o.max_depth {
                     self.out.push_str("|...]");
                     return;
                 }
@@ -602,7 +603,17 @@ mod tests {
         assert_eq!(deep.to_text_limited(3), "f(f(f(...)))");
         let long = Term::list((0..1_000_000).map(Term::Int));
         assert!(long.to_string().ends_with(",999999]"));
-        assert_eq!(long.to_text_limited(5), "[0,1,2,3|...]");
+        assert_eq!(long.to_text_limited(5), "[0,1,2,3,4|...]");
+        // SWI's documented example.
+        let s = |t: Term| c("s", vec![t]);
+        let example = c(
+            "a",
+            vec![
+                s(s(s(s(Term::Int(0))))),
+                Term::list(["a", "b", "c", "d", "e", "f"].map(a)),
+            ],
+        );
+        assert_eq!(example.to_text_limited(3), "a(s(s(...)),[a,b|...])");
         let mut ops = a("z");
         for _ in 0..100_000 {
             ops = c("-", vec![a("a"), ops]);

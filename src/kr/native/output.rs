@@ -8,6 +8,7 @@ use super::store::{Cell, VarNames};
 use super::text::text_of;
 use crate::kr::error::{KrError, KrResult};
 use crate::term::print::format_float;
+use crate::term::print::Options;
 use crate::term::{well_known as wk, Style, Sym, Term};
 use std::sync::Arc;
 
@@ -267,6 +268,29 @@ fn distribute_pad(out: &mut String, fills: &[(usize, char)], pad: usize) {
     }
 }
 
+/// The `write_term/2,3` options that change the text: `quoted(Bool)`, `ignore_ops(Bool)`,
+/// `max_depth(N)`; others are accepted and ignored.
+fn write_options(s: &Solver, list: Cell) -> Options {
+    let mut o = Options::new(Style::WRITE);
+    let (items, _) = s.m.st.list_items(list);
+    for it in items {
+        let Cell::Ptr(q) = s.m.st.deref(it) else {
+            continue;
+        };
+        let Some((name, 1)) = s.m.st.heap[q as usize].fun() else {
+            continue;
+        };
+        let on = matches!(s.ad(q, 0), Cell::Atom(a) if a == wk::TRUE);
+        match (name.name(), s.ad(q, 0)) {
+            ("quoted", _) => o.style.quoted = on,
+            ("ignore_ops", _) => o.style.operators = !on,
+            ("max_depth", Cell::Int(n)) => o.max_depth = n.clamp(0, 1 << 20) as usize,
+            _ => {}
+        }
+    }
+    o
+}
+
 fn format_args(s: &Solver, c: Cell) -> Vec<Cell> {
     let (items, end) = s.m.st.list_items(c);
     if matches!(end, Cell::Atom(n) if n == wk::NIL) {
@@ -295,8 +319,14 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
             emit(s, &t);
         }
         B::WriteTerm => {
-            let t = text(s, s.a(p, if arity == 3 { 1 } else { 0 }), Style::WRITE)?;
-            emit(s, &t);
+            let (ti, oi) = if arity == 3 { (1, 2) } else { (0, 1) };
+            let options = write_options(s, s.a(p, oi));
+            let c = s.a(p, ti);
+            if s.m.st.is_cyclic(c) {
+                return Err(super::machine::cyclic());
+            }
+            let t = s.m.st.to_term(c, &mut VarNames::new(&[]));
+            emit(s, &t.to_text_with(options));
         }
         B::Nl => emit(s, "\n"),
         B::Tab => {
