@@ -185,7 +185,7 @@ fn arithmetic() {
     );
     assert_eq!(
         one("X is 9223372036854775807 + 1"),
-        "error: error(evaluation_error(int_overflow),_)"
+        "X = 9223372036854775808"
     );
     assert_eq!(
         one("X is 1 mod 2.0"),
@@ -221,7 +221,7 @@ fn random_is_seeded() {
 
 #[test]
 fn comparison_and_types() {
-    assert_eq!(one("compare(O, 1, a)"), "O = '<'");
+    assert_eq!(one("compare(O, 1, a)"), "O = <");
     assert_eq!(
         one("msort([b, 1, a, 2.0, f(x), \"s\", Z], L), L = [V|_], V == Z"),
         "L = [Z,1,2.0,a,b,\"s\",f(x)], V = Z"
@@ -259,10 +259,7 @@ fn term_construction() {
         one("arg(x, f(a), _)"),
         "error: error(type_error(integer,x),arg/3)"
     );
-    assert_eq!(
-        one("T =.. L"),
-        "error: error(instantiation_error,('=..')/2)"
-    );
+    assert_eq!(one("T =.. L"), "error: error(instantiation_error,(=..)/2)");
 }
 
 #[test]
@@ -281,8 +278,14 @@ fn lists() {
         ask("", "length([a|T], N), N > 2, !"),
         ["T = [_R0,_R1], N = 3"]
     );
-    assert_eq!(one("length(L, -1)"), "false");
-    assert_eq!(one("length(a, N)"), "false");
+    assert_eq!(
+        one("length(L, -1)"),
+        "error: error(domain_error(not_less_than_zero,-1),length/2)"
+    );
+    assert_eq!(
+        one("length(a, N)"),
+        "error: error(type_error(list,a),length/2)"
+    );
     assert_eq!(ask("", "length(L, N), N >= 2, !"), ["L = [_R0,_R1], N = 2"]);
     assert_eq!(
         one("nth0(1, [a, b, c], X), nth1(1, [a, b, c], Y)"),
@@ -535,11 +538,14 @@ fn iso_errors_for_bad_lists() {
 }
 
 #[test]
-fn printing_deep_terms_is_an_error_not_a_crash() {
+fn printing_deep_terms_does_not_crash() {
     let p = "wrap(0, T, T) :- !. wrap(N, T0, T) :- N1 is N - 1, wrap(N1, f(T0), T).";
     assert_eq!(
-        ask(p, "wrap(20000, z, T), format(atom(A), \"~w\", [T])"),
-        ["error: error(resource_error(print_depth),_)"]
+        ask(
+            p,
+            "wrap(200000, z, _T), format(atom(_A), \"~w\", [_T]), atom_length(_A, N), sub_atom(_A, 0, 6, _, B)"
+        ),
+        ["N = 600001, B = 'f(f(f('"]
     );
     // Long lists are not deep: they print.
     assert_eq!(
@@ -601,13 +607,20 @@ fn hostile_arguments_are_errors_or_bounded() {
         one("functor(T, f, 100000000)"),
         "error: error(resource_error(memory),functor/3)"
     );
+    assert_eq!(one("X is 2 ** 100"), "X = 1267650600228229401496703205376");
+    assert_eq!(one("X is 1 << 64"), "X = 18446744073709551616");
+    // Integers are unbounded, but not without end: a result past about a million bits is an error.
     assert_eq!(
-        one("X is 2 ** 100"),
-        "error: error(evaluation_error(int_overflow),_)"
+        one("X is 2 ** 2000000"),
+        "error: error(resource_error(big_integer),_)"
     );
     assert_eq!(
-        one("X is 1 << 64"),
-        "error: error(evaluation_error(int_overflow),_)"
+        one("X is 1 << 100000000"),
+        "error: error(resource_error(big_integer),_)"
+    );
+    assert_eq!(
+        one("X is 3 ^ (2^100)"),
+        "error: error(resource_error(big_integer),_)"
     );
     assert_eq!(
         one("X is random(0)"),

@@ -52,7 +52,7 @@ impl Core {
                 Ok(Outcome::Done { real: true })
             }
             Act::Print(t) => {
-                let text = s.apply(t).to_text(Style::WRITE);
+                let text = s.apply(t).to_print_text();
                 self.out.printed.push(text.clone());
                 self.changes(vec![Event::Print { text }]);
                 Ok(Outcome::Done { real: true })

@@ -7,7 +7,8 @@
 
 use goal::diag::Diagnostic;
 use goal::syntax::prolog::{Located, Reader};
-use goal::term::{Subst, Sym, Term};
+use goal::term::print::{Options, MESSAGE_DEPTH};
+use goal::term::{Style, Subst, Sym, Term};
 use std::io::{self, BufRead, IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -20,11 +21,14 @@ pub struct Args {
     /// The query; without it, queries are read from standard input, one per line.
     #[arg(short, long)]
     pub query: Option<String>,
+    /// Seed of the random generator behind `random/1`, `random_between/3`, ... (default 0).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
 }
 
 /// Runs `goal prolog`.
 pub fn main(args: Args) -> ExitCode {
-    let kb = match load_files(&args.files) {
+    let kb = match load_files(&args.files, args.seed) {
         Ok(kb) => kb,
         Err(()) => return ExitCode::from(1),
     };
@@ -70,7 +74,7 @@ fn repl(kb: &engine::Kb, out: &mut impl Write) -> ExitCode {
 }
 
 /// Loads and compiles the files; prints diagnostics to stderr. `Err` when anything failed.
-fn load_files(files: &[PathBuf]) -> Result<engine::Kb, ()> {
+fn load_files(files: &[PathBuf], seed: u64) -> Result<engine::Kb, ()> {
     let mut sources: Vec<(String, String, Vec<Located>)> = Vec::new();
     let mut failed = false;
     for path in files {
@@ -97,7 +101,7 @@ fn load_files(files: &[PathBuf]) -> Result<engine::Kb, ()> {
         .iter()
         .flat_map(|(_, _, cs)| cs.iter().map(|c| c.term.clone()))
         .collect();
-    engine::Kb::load(&clauses).map_err(|errors| {
+    engine::Kb::load(&clauses, seed).map_err(|errors| {
         for (index, message) in errors {
             // Point at the clause in its file when the loader names one.
             let mut k = index;
@@ -132,6 +136,9 @@ fn run_query(kb: &engine::Kb, text: &str, file: &str, out: &mut impl Write) -> R
             return Err(());
         }
     };
+    for warning in kb.undefined_goals(&query) {
+        eprintln!("warning: {warning}");
+    }
     let vars = named_vars(&query);
     let (answers, error, output) = kb.solve(&query);
     if !output.is_empty() {
@@ -166,23 +173,33 @@ pub fn named_vars(query: &Term) -> Vec<Sym> {
         .collect()
 }
 
-/// One answer line: `X = a, Y = [b,c]`, or `true` when there are no named variables.
+/// One answer line: `X = a, Y = [b,c]`, or `true` when there are no named variables. Values are
+/// written as SWI-Prolog's top level writes them: `writeq` text at priority 699, so operators
+/// are bracketed (`X = (a:-b)`, `O = (>)`); unbound variables are written `_`.
 pub fn answer_line(vars: &[Sym], answer: &Subst) -> String {
     if vars.is_empty() {
         return "true".into();
     }
+    let options = Options {
+        priority: 699,
+        anonymous_vars: true,
+        ..Options::new(Style::WRITEQ)
+    };
     vars.iter()
         .map(|v| {
-            let value = answer.apply(&Term::Var(*v));
-            format!("{} = {}", v.name(), unbound_as_underscore(&value))
+            // The native engine's answers are fully resolved: one walk finds the value.
+            let var = Term::Var(*v);
+            let value = answer.walk(&var);
+            format!("{} = {}", v.name(), value.to_text_with(options))
         })
         .collect::<Vec<_>>()
         .join(", ")
 }
 
-/// The line for an error: the error term when it is `error(...)`, else `error: Term`.
+/// The line for an error: the error term when it is `error(...)`, else `error: Term`. The term
+/// is cut off at depth [`MESSAGE_DEPTH`] (`...`), so a huge culprit cannot flood the output.
 pub fn error_line(error: &Term) -> String {
-    let text = error.to_string();
+    let text = error.to_text_limited(MESSAGE_DEPTH);
     if text.starts_with("error") {
         text
     } else {
@@ -190,19 +207,9 @@ pub fn error_line(error: &Term) -> String {
     }
 }
 
-/// Replaces every variable by `_` (answers show unbound values as `_`).
-fn unbound_as_underscore(t: &Term) -> Term {
-    match t {
-        Term::Var(_) => Term::var("_"),
-        Term::Compound(c) if !t.is_ground() => {
-            Term::compound(c.name, c.args.iter().map(unbound_as_underscore).collect())
-        }
-        other => other.clone(),
-    }
-}
-
 /// The knowledge base behind the command: the native engine with the agents' default limits.
 mod engine {
+    use goal::kr::native::library;
     use goal::kr::{Engine, FactBase, Knowledge, KrError, NativeEngine, View};
     use goal::term::{Subst, Term};
     use std::cell::RefCell;
@@ -216,17 +223,54 @@ mod engine {
 
     impl Kb {
         /// Compiles clauses; on failure, (clause index, message) for every rejected clause.
-        pub fn load(clauses: &[Term]) -> Result<Kb, Vec<(usize, String)>> {
+        pub fn load(clauses: &[Term], seed: u64) -> Result<Kb, Vec<(usize, String)>> {
             match Knowledge::load(clauses) {
                 Ok(knowledge) => Ok(Kb {
                     knowledge,
-                    engine: RefCell::new(NativeEngine::default()),
+                    engine: RefCell::new(NativeEngine::new(seed)),
                 }),
                 Err(KrError::Load(errors)) => {
                     Err(errors.into_iter().map(|e| (e.clause, e.message)).collect())
                 }
                 Err(e) => Err(vec![(usize::MAX, e.to_string())]),
             }
+        }
+
+        /// A warning for each goal of `query` that nothing defines (it fails, as GOAL's
+        /// undefined predicates do), with a "did you mean" for a near name.
+        pub fn undefined_goals(&self, query: &Term) -> Vec<String> {
+            let mut out = Vec::new();
+            let mut stack = vec![query];
+            while let Some(g) = stack.pop() {
+                let Some((name, arity)) = g.functor() else {
+                    continue;
+                };
+                let args = g.args();
+                match (name.name(), arity) {
+                    ("," | ";" | "->" | "*->" | "|", 2) => stack.extend(args.iter().rev()),
+                    ("\\+" | "not" | "once" | "ignore" | "call", 1) => stack.push(&args[0]),
+                    ("findall" | "forall" | "aggregate_all" | "bagof" | "setof", _)
+                        if arity >= 2 =>
+                    {
+                        stack.push(&args[1])
+                    }
+                    _ if self.knowledge.resolves(name, arity)
+                        || library::is_known(name.name(), arity) => {}
+                    _ => {
+                        let own = self.knowledge.predicates();
+                        let own = own.iter().map(|(n, a)| (n.name(), *a));
+                        let hint = match library::suggest(name.name(), arity, own) {
+                            Some(s) => format!(" (did you mean `{s}`?)"),
+                            None => String::new(),
+                        };
+                        out.push(format!(
+                            "`{}/{arity}` is not defined, so it fails{hint}",
+                            name.name()
+                        ));
+                    }
+                }
+            }
+            out
         }
 
         /// All answers of `query`, the error that stopped it (if any), and the text written by

@@ -1,4 +1,8 @@
-//! Writing terms as Prolog text: `writeq` style (reads back as the same term) and `write` style.
+//! Writing terms as Prolog text, as SWI-Prolog's `writeq`/`write`/`print` do: atoms are quoted
+//! only where they must be, operators are written in operator form with brackets only where the
+//! text would otherwise read back as another term. The writer is iterative (an explicit job
+//! stack), so a term nested a million deep prints without recursion, and it has a depth-limited
+//! mode (SWI's `max_depth`) that writes `...` for what lies deeper.
 
 use super::ops;
 use super::sym::{well_known as wk, Sym};
@@ -20,7 +24,7 @@ impl Style {
         quoted: true,
         operators: true,
     };
-    /// `write/1` and `print/1`: unquoted, with operators.
+    /// `write/1`: unquoted, with operators.
     pub const WRITE: Style = Style {
         quoted: false,
         operators: true,
@@ -32,15 +36,67 @@ impl Style {
     };
 }
 
+/// Everything that decides how a term is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Options {
+    /// Quoting and operators.
+    pub style: Style,
+    /// Nesting depth (and list length) beyond which `...` is written; 0 for no limit.
+    pub max_depth: usize,
+    /// The context priority: a term whose operator binds looser is bracketed (1200: none; an
+    /// answer `X = V` writes `V` at 699, so `X = (a:-b)` and `X = (>)`).
+    pub priority: u16,
+    /// Write every variable as `_` (answers of `goal prolog` do).
+    pub anonymous_vars: bool,
+}
+
+impl Options {
+    /// Options with this style, no depth limit and priority 1200.
+    pub fn new(style: Style) -> Options {
+        Options {
+            style,
+            max_depth: 0,
+            priority: 1200,
+            anonymous_vars: false,
+        }
+    }
+}
+
+/// The depth limit for terms quoted inside error messages (like SWI's messages).
+pub const MESSAGE_DEPTH: usize = 10;
+
 impl Term {
     /// The term as text in the given style.
     pub fn to_text(&self, style: Style) -> String {
+        self.to_text_with(Options::new(style))
+    }
+
+    /// The term as text with the given options.
+    pub fn to_text_with(&self, options: Options) -> String {
         let mut w = Writer {
             out: String::new(),
-            style,
+            o: options,
         };
-        w.term(self, 1200);
+        w.run(self);
         w.out
+    }
+
+    /// `writeq` text cut off at depth `max_depth` with `...` (for messages about big terms).
+    pub fn to_text_limited(&self, max_depth: usize) -> String {
+        self.to_text_with(Options {
+            max_depth,
+            ..Options::new(Style::WRITEQ)
+        })
+    }
+
+    /// The text GOAL's `print/1` action writes: an atom or string without its quotes, any other
+    /// term as `writeq` writes it (so inner atoms keep their quotes).
+    pub fn to_print_text(&self) -> String {
+        match self {
+            Term::Atom(a) => a.name().to_string(),
+            Term::Str(s) => s.to_string(),
+            other => other.to_text(Style::WRITEQ),
+        }
     }
 }
 
@@ -51,6 +107,7 @@ impl fmt::Display for Term {
     }
 }
 
+/// The symbol characters: runs of them form atoms like `+`, `=..` or `-->`.
 fn is_symbol_char(c: char) -> bool {
     "+-*/\\^<>=~:.?@#&$".contains(c)
 }
@@ -59,29 +116,20 @@ fn is_alnum(c: char) -> bool {
     c.is_alphanumeric() || c == '_'
 }
 
-/// True when `name` can be written without quotes and reads back as the same atom.
+/// True when `name` can be written without quotes and reads back as the same atom (SWI's
+/// rules: solo atoms, symbol-character atoms, and letter-digit atoms starting with a lowercase
+/// letter, Unicode included).
 pub fn atom_needs_no_quotes(name: &str) -> bool {
-    if matches!(name, "[]" | "{}" | "!") {
+    if matches!(name, "[]" | "{}" | "!" | ";") {
         return true;
     }
     let mut chars = name.chars();
     match chars.next() {
-        Some(c) if c.is_ascii_lowercase() => {
-            chars.all(|c| c.is_ascii_alphanumeric() || c == '_') && !ops::is_operator(name)
+        Some(c) if c.is_lowercase() => chars.all(is_alnum),
+        Some(c) if is_symbol_char(c) => {
+            name.chars().all(is_symbol_char) && name != "." && !name.starts_with("/*")
         }
         _ => false,
-    }
-}
-
-/// True when `name` written right before `(` reads back as that functor without quotes.
-fn functor_needs_no_quotes(name: &str) -> bool {
-    let mut chars = name.chars();
-    match chars.next() {
-        Some(c) if c.is_ascii_lowercase() => chars.all(|c| c.is_ascii_alphanumeric() || c == '_'),
-        Some(_) => {
-            matches!(name, "!" | ";") || (name.chars().all(is_symbol_char) && !name.contains("/*"))
-        }
-        None => false,
     }
 }
 
@@ -113,7 +161,8 @@ fn escape_into(out: &mut String, text: &str, quote: char) {
     }
 }
 
-/// Formats a float so that it reads back as a float (always with a `.` before any exponent).
+/// Formats a float as SWI-Prolog does: the shortest text that reads back as the same float,
+/// always with a `.` before any exponent, and an exponent from 1.0e15 up.
 pub fn format_float(f: f64) -> String {
     if f.is_nan() {
         return "nan".into();
@@ -121,19 +170,101 @@ pub fn format_float(f: f64) -> String {
     if f.is_infinite() {
         return if f > 0.0 { "inf".into() } else { "-inf".into() };
     }
-    let s = format!("{f:?}");
+    let s = if f.abs() >= 1e15 {
+        format!("{f:e}")
+    } else {
+        format!("{f:?}")
+    };
     match s.find('e') {
         Some(pos) if !s[..pos].contains('.') => format!("{}.0{}", &s[..pos], &s[pos..]),
         _ => s,
     }
 }
 
+/// How the text of an operand begins, as far as a prefix operator before it cares.
+#[derive(PartialEq, Eq)]
+enum Lead {
+    Digit,
+    /// An opening bracket around a term of this priority (0 for an operator atom).
+    Paren(u16),
+    Other,
+}
+
+/// How the text of `t`, written at priority `prio`, begins.
+fn lead(mut t: &Term, mut prio: u16) -> Lead {
+    loop {
+        match t {
+            Term::Int(i) => return if *i >= 0 { Lead::Digit } else { Lead::Other },
+            Term::BigInt(b) => {
+                return match b.sign() {
+                    num_bigint::Sign::Minus => Lead::Other,
+                    _ => Lead::Digit,
+                }
+            }
+            Term::Float(f) if f.0 >= 0.0 && f.0.is_finite() => return Lead::Digit,
+            Term::Atom(a) if prio < 1200 && ops::is_operator(a.name()) => return Lead::Paren(0),
+            Term::Compound(c) if c.args.len() == 2 && c.name != wk::DOT && c.name != wk::BAR => {
+                let Some(op) = ops::infix(c.name.name()) else {
+                    return Lead::Other;
+                };
+                if op.priority > prio {
+                    return Lead::Paren(op.priority);
+                }
+                prio = op.operand_priorities().0;
+                t = &c.args[0];
+            }
+            Term::Compound(c) if c.args.len() == 1 => {
+                return match ops::prefix(c.name.name()) {
+                    Some(op) if op.priority > prio => Lead::Paren(op.priority),
+                    _ => Lead::Other,
+                };
+            }
+            _ => return Lead::Other,
+        }
+    }
+}
+
+/// One step of the writer.
+enum Job<'t> {
+    /// A term at a context priority and depth; `arg` for arguments of `f(...)` and list items.
+    Term(&'t Term, u16, usize, bool),
+    /// A token that may need a space before it so it does not glue onto the previous one.
+    Tok(&'static str),
+    /// Text written as it is.
+    Raw(&'static str),
+    /// A word operator (`is`, `mod`) with a space on either side.
+    Word(&'static str),
+    /// The rest of a list after item `index`.
+    Tail(&'t Term, usize, usize),
+}
+
 struct Writer {
     out: String,
-    style: Style,
+    o: Options,
 }
 
 impl Writer {
+    fn run(&mut self, t: &Term) {
+        let mut jobs = vec![Job::Term(t, self.o.priority, 1, false)];
+        while let Some(job) = jobs.pop() {
+            match job {
+                Job::Term(t, prio, depth, arg) => self.term(t, prio, depth, arg, &mut jobs),
+                Job::Tok(s) => self.token(s),
+                Job::Raw(s) => self.out.push_str(s),
+                Job::Word(s) => {
+                    self.out.push(' ');
+                    self.out.push_str(s);
+                    self.out.push(' ');
+                }
+                Job::Tail(t, depth, index) => self.tail(t, depth, index, &mut jobs),
+            }
+        }
+    }
+
+    fn too_deep(&self, depth: usize) -> bool {
+        self.o.max_depth > 0 && depth > self.o.max_depth
+    }
+
     /// Appends a token, inserting a space when it would otherwise glue onto the previous token.
     fn token(&mut self, tok: &str) {
         if let (Some(prev), Some(next)) = (self.out.chars().last(), tok.chars().next()) {
@@ -146,22 +277,33 @@ impl Writer {
         self.out.push_str(tok);
     }
 
-    fn atom_text(&self, name: Sym) -> String {
-        let text = name.name();
-        if self.style.quoted && !atom_needs_no_quotes(text) {
-            quote_atom(text)
+    fn atom_text(&self, name: &str) -> String {
+        if self.o.style.quoted && !atom_needs_no_quotes(name) {
+            quote_atom(name)
         } else {
-            text.to_string()
+            name.to_string()
         }
     }
 
-    fn term(&mut self, t: &Term, max_priority: u16) {
+    fn term<'t>(
+        &mut self,
+        t: &'t Term,
+        prio: u16,
+        depth: usize,
+        arg: bool,
+        jobs: &mut Vec<Job<'t>>,
+    ) {
+        if self.too_deep(depth) {
+            return self.token("...");
+        }
         match t {
+            Term::Var(_) if self.o.anonymous_vars => self.token("_"),
             Term::Var(v) => self.token(v.name()),
             Term::Int(i) => self.token(&i.to_string()),
+            Term::BigInt(b) => self.token(&b.to_string()),
             Term::Float(f) => self.token(&format_float(f.0)),
             Term::Str(s) => {
-                if self.style.quoted {
+                if self.o.style.quoted {
                     let mut q = String::from("\"");
                     escape_into(&mut q, s, '"');
                     q.push('"');
@@ -171,132 +313,140 @@ impl Writer {
                 }
             }
             Term::Atom(a) => {
-                let text = self.atom_text(*a);
-                self.token(&text)
+                let text = self.atom_text(a.name());
+                // An operator as an operand is bracketed, so `- (-)` does not read as `- -`.
+                if self.o.style.operators && !arg && prio < 1200 && ops::is_operator(a.name()) {
+                    self.token("(");
+                    self.out.push_str(&text);
+                    self.out.push(')');
+                } else {
+                    self.token(&text)
+                }
             }
-            Term::Compound(c) => self.compound(c.name, &c.args, max_priority),
+            Term::Compound(c) => self.compound(c.name, &c.args, prio, depth, jobs),
         }
     }
 
-    fn compound(&mut self, name: Sym, args: &[Term], max_priority: u16) {
+    fn compound<'t>(
+        &mut self,
+        name: Sym,
+        args: &'t [Term],
+        prio: u16,
+        depth: usize,
+        jobs: &mut Vec<Job<'t>>,
+    ) {
         if name == wk::DOT && args.len() == 2 {
-            return self.list(args);
-        }
-        if name == wk::CURLY && args.len() == 1 && self.style.operators {
-            self.token("{");
-            self.term(&args[0], 1200);
-            self.token("}");
+            self.token("[");
+            jobs.push(Job::Tail(&args[1], depth, 0));
+            jobs.push(Job::Term(&args[0], 999, depth + 1, true));
             return;
         }
-        if self.style.operators {
+        if self.o.style.operators {
+            if name == wk::CURLY && args.len() == 1 {
+                self.token("{");
+                jobs.push(Job::Raw("}"));
+                jobs.push(Job::Term(&args[0], 1200, depth + 1, false));
+                return;
+            }
             let text = name.name();
-            if args.len() == 2 && text != "|" {
+            if args.len() == 2 && name != wk::BAR {
                 if let Some(op) = ops::infix(text) {
-                    let (lp, rp) = op.operand_priorities();
-                    let paren = op.priority > max_priority;
-                    if paren {
-                        self.token("(");
-                    }
-                    self.operand(&args[0], lp);
-                    if text == "," {
-                        self.out.push(',');
-                    } else if text.chars().all(is_alnum) {
-                        self.out.push(' ');
-                        self.out.push_str(text);
-                        self.out.push(' ');
-                    } else {
-                        self.token(text);
-                    }
-                    self.operand_after_operator(&args[1], rp);
-                    if paren {
-                        self.token(")");
-                    }
-                    return;
+                    return self.infix(op, args, prio, depth, jobs);
                 }
             }
             if args.len() == 1 {
                 if let Some(op) = ops::prefix(text) {
                     let (_, rp) = op.operand_priorities();
-                    let paren = op.priority > max_priority;
-                    if paren {
-                        self.token("(");
+                    let lead = lead(&args[0], rp);
+                    let numeric = (text == "-" || text == "+") && lead == Lead::Digit;
+                    if !matches!(lead, Lead::Paren(_)) && !numeric {
+                        return self.prefix(op, &args[0], prio, depth, jobs);
                     }
-                    self.token(text);
-                    let arg = &args[0];
-                    let numeric = matches!(arg, Term::Int(_) | Term::Float(_));
-                    if numeric && text == "-" || text.chars().all(is_alnum) {
-                        self.out.push(' ');
-                    }
-                    self.operand_after_operator(arg, rp);
-                    if paren {
-                        self.token(")");
-                    }
-                    return;
                 }
             }
         }
-        let functor = if self.style.quoted && !functor_needs_no_quotes(name.name()) {
-            quote_atom(name.name())
-        } else {
-            name.name().to_string()
+        let functor = match name.name() {
+            "[]" | "{}" if self.o.style.quoted => quote_atom(name.name()),
+            other => self.atom_text(other),
         };
         self.token(&functor);
         self.out.push('(');
-        for (i, a) in args.iter().enumerate() {
+        jobs.push(Job::Raw(")"));
+        for (i, a) in args.iter().enumerate().rev() {
+            jobs.push(Job::Term(a, 999, depth + 1, true));
             if i > 0 {
+                jobs.push(Job::Raw(","));
+            }
+        }
+    }
+
+    fn infix<'t>(
+        &mut self,
+        op: ops::Op,
+        args: &'t [Term],
+        prio: u16,
+        depth: usize,
+        jobs: &mut Vec<Job<'t>>,
+    ) {
+        let (lp, rp) = op.operand_priorities();
+        let paren = op.priority > prio;
+        if paren {
+            self.token("(");
+            jobs.push(Job::Raw(")"));
+        }
+        jobs.push(Job::Term(&args[1], rp, depth + 1, false));
+        // `a-(b:-c)` would read as the functor `-` applied to `b:-c`, an argument too loose
+        // for functional notation; a space keeps the operator infix.
+        if matches!(lead(&args[1], rp), Lead::Paren(p) if p > 999) && op.name != "," {
+            jobs.push(Job::Raw(" "));
+        }
+        jobs.push(if op.name == "," {
+            Job::Raw(",")
+        } else if op.name.chars().all(is_alnum) {
+            Job::Word(op.name)
+        } else {
+            Job::Tok(op.name)
+        });
+        jobs.push(Job::Term(&args[0], lp, depth + 1, false));
+    }
+
+    fn prefix<'t>(
+        &mut self,
+        op: ops::Op,
+        arg: &'t Term,
+        prio: u16,
+        depth: usize,
+        jobs: &mut Vec<Job<'t>>,
+    ) {
+        let (_, rp) = op.operand_priorities();
+        if op.priority > prio {
+            self.token("(");
+            jobs.push(Job::Raw(")"));
+        }
+        self.token(op.name);
+        jobs.push(Job::Term(arg, rp, depth + 1, false));
+    }
+
+    /// Writes the rest of a list: `,Item` cells, then `|Tail` or `]`.
+    fn tail<'t>(&mut self, t: &'t Term, depth: usize, index: usize, jobs: &mut Vec<Job<'t>>) {
+        match t {
+            Term::Compound(c) if c.name == wk::DOT && c.args.len() == 2 => {
+                // SWI shows `max_depth - depth + 1` items of a list at `depth`.
+                if self.o.max_depth > 0 && depth + index + 1 > self.o.max_depth {
+                    self.out.push_str("|...]");
+                    return;
+                }
                 self.out.push(',');
+                jobs.push(Job::Tail(&c.args[1], depth, index + 1));
+                jobs.push(Job::Term(&c.args[0], 999, depth + 1, true));
             }
-            self.term(a, 999);
-        }
-        self.out.push(')');
-    }
-
-    /// Writes an operand that follows an operator; an opening bracket right after a symbolic
-    /// operator would turn the operator into a functor, so a space separates them.
-    fn operand_after_operator(&mut self, arg: &Term, priority: u16) {
-        let start = self.out.len();
-        self.operand(arg, priority);
-        if self.out[start..].starts_with('(') && start > 0 {
-            let prev = self.out[..start].chars().last().unwrap_or(' ');
-            if prev != ' ' && prev != ',' && prev != '(' {
-                self.out.insert(start, ' ');
+            Term::Atom(a) if *a == wk::NIL => self.out.push(']'),
+            other => {
+                self.out.push('|');
+                jobs.push(Job::Raw("]"));
+                jobs.push(Job::Term(other, 999, depth + 1, true));
             }
         }
-    }
-
-    /// Writes an operand of an operator; an operator atom there is bracketed, so `(-)-a` does
-    /// not read back as `-(-(a))`.
-    fn operand(&mut self, arg: &Term, priority: u16) {
-        match arg {
-            Term::Atom(a) if ops::is_operator(a.name()) => {
-                self.token("(");
-                self.term(arg, 1200);
-                self.token(")");
-            }
-            _ => self.term(arg, priority),
-        }
-    }
-
-    fn list(&mut self, args: &[Term]) {
-        self.token("[");
-        self.term(&args[0], 999);
-        let mut tail = &args[1];
-        loop {
-            match tail {
-                Term::Compound(c) if c.name == wk::DOT && c.args.len() == 2 => {
-                    self.out.push(',');
-                    self.term(&c.args[0], 999);
-                    tail = &c.args[1];
-                }
-                Term::Atom(a) if *a == wk::NIL => break,
-                other => {
-                    self.out.push('|');
-                    self.term(other, 999);
-                    break;
-                }
-            }
-        }
-        self.out.push(']');
     }
 }
 
@@ -312,32 +462,42 @@ mod tests {
     }
 
     #[test]
-    fn atoms_are_quoted_when_needed() {
+    fn atoms_are_quoted_only_where_swi_quotes_them() {
         assert_eq!(a("foo").to_string(), "foo");
         assert_eq!(a("RoomA1").to_string(), "'RoomA1'");
         assert_eq!(a("Bot_1").to_string(), "'Bot_1'");
         assert_eq!(a("[]").to_string(), "[]");
         assert_eq!(a("it's").to_string(), "'it\\'s'");
-        assert_eq!(a("+").to_string(), "'+'");
-        assert_eq!(a("is").to_string(), "'is'");
         assert_eq!(a("").to_string(), "''");
         assert_eq!(a("RoomA1").to_text(Style::WRITE), "RoomA1");
+        for bare in [
+            "+", "is", ";", ">", "\\", "-", "-->", "ü", "straße", "---", "!", "{}", "=..",
+        ] {
+            assert_eq!(a(bare).to_string(), bare);
+        }
+        for (atom, quoted) in [
+            (",", "','"),
+            ("|", "'|'"),
+            (".", "'.'"),
+            ("/*", "'/*'"),
+            ("Über", "'Über'"),
+            ("_x", "'_x'"),
+            ("a b", "'a b'"),
+        ] {
+            assert_eq!(a(atom).to_string(), quoted);
+        }
     }
 
     #[test]
     fn operators_are_written_in_operator_form() {
         let x = Term::var("X");
+        let i = Term::Int;
         assert_eq!(c("=", vec![x.clone(), a("a")]).to_string(), "X=a");
         assert_eq!(
-            c(
-                "is",
-                vec![x.clone(), c("+", vec![Term::Int(1), Term::Int(2)])]
-            )
-            .to_string(),
+            c("is", vec![x.clone(), c("+", vec![i(1), i(2)])]).to_string(),
             "X is 1+2"
         );
-        assert_eq!(c("-", vec![a("a"), Term::Int(-1)]).to_string(), "a- -1");
-        assert_eq!(c("-", vec![Term::Int(1)]).to_string(), "- 1");
+        assert_eq!(c("-", vec![a("a"), i(-1)]).to_string(), "a- -1");
         assert_eq!(c("-", vec![a("a")]).to_string(), "-a");
         assert_eq!(
             c("\\+", vec![c("p", vec![x.clone()])]).to_string(),
@@ -349,7 +509,7 @@ mod tests {
         );
         assert_eq!(
             c("-", vec![a("a"), c("-", vec![a("b"), a("c")])]).to_string(),
-            "a- (b-c)"
+            "a-(b-c)"
         );
         assert_eq!(
             c("f", vec![c(",", vec![a("a"), a("b")])]).to_string(),
@@ -361,8 +521,42 @@ mod tests {
         );
         assert_eq!(
             c("-", vec![c(",", vec![a("a"), a("b")])]).to_string(),
-            "- (a,b)"
+            "-((a,b))"
         );
+    }
+
+    #[test]
+    fn prefix_minus_never_reads_back_as_a_negative_number() {
+        let i = Term::Int;
+        let pow = c("^", vec![i(2), i(2)]);
+        assert_eq!(c("-", vec![i(1)]).to_string(), "-(1)");
+        assert_eq!(c("-", vec![Term::from(1.5)]).to_string(), "-(1.5)");
+        assert_eq!(c("-", vec![pow.clone()]).to_string(), "-(2^2)");
+        assert_eq!(c("-", vec![c("^", vec![a("a"), i(2)])]).to_string(), "-a^2");
+        assert_eq!(c("-", vec![c("-", vec![i(1)])]).to_string(), "- -(1)");
+        assert_eq!(c("-", vec![i(-1)]).to_string(), "- -1");
+        assert_eq!(c("^", vec![i(-1), i(2)]).to_string(), "-1^2");
+        assert_eq!(
+            c("-", vec![c("+", vec![a("a"), a("b")])]).to_string(),
+            "-(a+b)"
+        );
+    }
+
+    #[test]
+    fn operator_atoms_are_bracketed_as_operands_only() {
+        assert_eq!(c("f", vec![a("-"), a(":-")]).to_string(), "f(-,:-)");
+        assert_eq!(Term::list(vec![a("-"), a(";")]).to_string(), "[-,;]");
+        assert_eq!(c("-", vec![a("-")]).to_string(), "-(-)");
+        assert_eq!(c("-", vec![a("-"), a("-")]).to_string(), "(-)-(-)");
+        let answer = |t: &Term| {
+            t.to_text_with(Options {
+                priority: 699,
+                ..Options::new(Style::WRITEQ)
+            })
+        };
+        assert_eq!(answer(&a(">")), "(>)");
+        assert_eq!(answer(&c(":-", vec![a("a"), a("b")])), "(a:-b)");
+        assert_eq!(answer(&c("-", vec![a("a"), a("b")])), "a-b");
     }
 
     #[test]
@@ -373,6 +567,11 @@ mod tests {
         assert_eq!(Term::string("say \"hi\"").to_string(), "\"say \\\"hi\\\"\"");
         assert_eq!(Term::from(25.0).to_string(), "25.0");
         assert_eq!(Term::from(1e22).to_string(), "1.0e22");
+        assert_eq!(Term::from(1e15).to_string(), "1.0e15");
+        assert_eq!(
+            Term::from(123456789012345.0).to_string(),
+            "123456789012345.0"
+        );
         assert_eq!(
             c("{}", vec![c(",", vec![a("a"), a("b")])]).to_string(),
             "{a,b}"
@@ -380,5 +579,45 @@ mod tests {
         assert_eq!(c("mod", vec![a("a")]).to_string(), "mod(a)");
         assert_eq!(c("[]", vec![a("a")]).to_string(), "'[]'(a)");
         assert_eq!(c(",", vec![a("a")]).to_string(), "','(a)");
+    }
+
+    #[test]
+    fn print_text_strips_only_the_outer_quotes() {
+        assert_eq!(a("hello world").to_print_text(), "hello world");
+        assert_eq!(Term::string("hi").to_print_text(), "hi");
+        assert_eq!(c("f", vec![a("A b"), a("c")]).to_print_text(), "f('A b',c)");
+        assert_eq!(
+            Term::list(vec![a("A"), a("b c")]).to_print_text(),
+            "['A','b c']"
+        );
+    }
+
+    #[test]
+    fn huge_terms_print_without_recursion_and_limited_when_asked() {
+        let mut deep = a("z");
+        for _ in 0..1_000_000 {
+            deep = c("f", vec![deep]);
+        }
+        let text = deep.to_string();
+        assert_eq!(text.len(), 1_000_000 * 3 + 1);
+        assert_eq!(deep.to_text_limited(3), "f(f(f(...)))");
+        let long = Term::list((0..1_000_000).map(Term::Int));
+        assert!(long.to_string().ends_with(",999999]"));
+        assert_eq!(long.to_text_limited(5), "[0,1,2,3,4|...]");
+        // SWI's documented example.
+        let s = |t: Term| c("s", vec![t]);
+        let example = c(
+            "a",
+            vec![
+                s(s(s(s(Term::Int(0))))),
+                Term::list(["a", "b", "c", "d", "e", "f"].map(a)),
+            ],
+        );
+        assert_eq!(example.to_text_limited(3), "a(s(s(...)),[a,b|...])");
+        let mut ops = a("z");
+        for _ in 0..100_000 {
+            ops = c("-", vec![a("a"), ops]);
+        }
+        assert!(ops.to_string().starts_with("a-(a-(a-"));
     }
 }

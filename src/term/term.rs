@@ -20,6 +20,8 @@ pub enum Term {
     Atom(Sym),
     /// A 64-bit integer.
     Int(i64),
+    /// An integer outside the 64-bit range (never one that fits: see [`Term::integer`]).
+    BigInt(Arc<num_bigint::BigInt>),
     /// A floating-point number.
     Float(Float),
     /// A string literal `"..."`.
@@ -94,6 +96,7 @@ fn eq_shallow(mut a: &Term, mut b: &Term, budget: u32) -> bool {
             }
             (Term::Atom(x), Term::Atom(y)) | (Term::Var(x), Term::Var(y)) => x == y,
             (Term::Int(x), Term::Int(y)) => x == y,
+            (Term::BigInt(x), Term::BigInt(y)) => x == y,
             (Term::Float(x), Term::Float(y)) => x == y,
             (Term::Str(x), Term::Str(y)) => x == y,
             _ => false,
@@ -117,6 +120,7 @@ fn eq_deep(a: &Term, b: &Term) -> bool {
             }
             (Term::Atom(x), Term::Atom(y)) | (Term::Var(x), Term::Var(y)) => x == y,
             (Term::Int(x), Term::Int(y)) => x == y,
+            (Term::BigInt(x), Term::BigInt(y)) => x == y,
             (Term::Float(x), Term::Float(y)) => x == y,
             (Term::Str(x), Term::Str(y)) => x == y,
             _ => false,
@@ -147,6 +151,7 @@ fn hash_shallow<H: Hasher>(mut t: &Term, state: &mut H, budget: u32) {
         match t {
             Term::Atom(s) | Term::Var(s) => s.hash(state),
             Term::Int(i) => i.hash(state),
+            Term::BigInt(b) => b.hash(state),
             Term::Float(f) => f.hash(state),
             Term::Str(s) => s.hash(state),
             Term::Compound(c) => {
@@ -172,6 +177,7 @@ fn hash_deep<H: Hasher>(t: &Term, state: &mut H) {
         match t {
             Term::Atom(s) | Term::Var(s) => s.hash(state),
             Term::Int(i) => i.hash(state),
+            Term::BigInt(b) => b.hash(state),
             Term::Float(f) => f.hash(state),
             Term::Str(s) => s.hash(state),
             Term::Compound(c) => {
@@ -272,6 +278,14 @@ impl Term {
             .fold(tail, |acc, item| Term::cons(item, acc))
     }
 
+    /// An integer term: `Int` when it fits in 64 bits, `BigInt` otherwise.
+    pub fn integer(n: num_bigint::BigInt) -> Term {
+        match i64::try_from(&n) {
+            Ok(i) => Term::Int(i),
+            Err(_) => Term::BigInt(Arc::new(n)),
+        }
+    }
+
     /// The name and arity of an atom or compound (`None` for numbers, strings and variables).
     pub fn functor(&self) -> Option<(Sym, usize)> {
         match self {
@@ -298,7 +312,7 @@ impl Term {
     pub fn is_atomic(&self) -> bool {
         matches!(
             self,
-            Term::Atom(_) | Term::Int(_) | Term::Float(_) | Term::Str(_)
+            Term::Atom(_) | Term::Int(_) | Term::BigInt(_) | Term::Float(_) | Term::Str(_)
         )
     }
 
@@ -460,7 +474,7 @@ impl Term {
     fn order_class(&self) -> u8 {
         match self {
             Term::Var(_) => 0,
-            Term::Float(_) | Term::Int(_) => 1,
+            Term::Float(_) | Term::Int(_) | Term::BigInt(_) => 1,
             Term::Atom(_) => 3,
             Term::Str(_) => 4,
             Term::Compound(_) => 5,
@@ -483,6 +497,7 @@ impl Term {
                 (Term::Float(x), Term::Float(y)) => x.0.total_cmp(&y.0),
                 (Term::Int(x), Term::Float(y)) => compare_int_float(*x, y.0),
                 (Term::Float(x), Term::Int(y)) => compare_int_float(*y, x.0).reverse(),
+                (Term::BigInt(_), _) | (_, Term::BigInt(_)) => compare_big(a, b),
                 (Term::Atom(x), Term::Atom(y)) => x.name().cmp(y.name()),
                 (Term::Str(x), Term::Str(y)) => x.cmp(y),
                 (Term::Compound(x), Term::Compound(y)) => {
@@ -512,6 +527,35 @@ impl Term {
 /// Standard order between an integer and a float: by value, and the float first when equal.
 fn compare_int_float(i: i64, f: f64) -> Ordering {
     match (i as f64).partial_cmp(&f) {
+        Some(Ordering::Equal) | None => Ordering::Greater,
+        Some(o) => o,
+    }
+}
+
+/// Standard order of two numbers at least one of which is a big integer: by value, a float
+/// first when equal.
+fn compare_big(a: &Term, b: &Term) -> Ordering {
+    use num_bigint::BigInt;
+    use num_traits::ToPrimitive;
+    let big = |t: &Term| match t {
+        Term::Int(i) => Some(BigInt::from(*i)),
+        Term::BigInt(b) => Some((**b).clone()),
+        _ => None,
+    };
+    match (big(a), big(b)) {
+        (Some(x), Some(y)) => x.cmp(&y),
+        (Some(x), None) => float_order(x.to_f64().unwrap_or(f64::NAN), b),
+        (None, Some(y)) => float_order(y.to_f64().unwrap_or(f64::NAN), a).reverse(),
+        (None, None) => Ordering::Equal,
+    }
+}
+
+/// A big integer (as the float `x`) against the float term `f`.
+fn float_order(x: f64, f: &Term) -> Ordering {
+    let Term::Float(f) = f else {
+        return Ordering::Equal;
+    };
+    match x.partial_cmp(&f.0) {
         Some(Ordering::Equal) | None => Ordering::Greater,
         Some(o) => o,
     }
@@ -587,6 +631,24 @@ mod tests {
         a.hash(&mut h);
         drop(a);
         drop(b);
+    }
+
+    #[test]
+    fn big_integers_are_normalised_and_ordered_by_value() {
+        use num_bigint::BigInt;
+        assert_eq!(Term::integer(BigInt::from(5)), Term::Int(5));
+        let big = Term::integer(BigInt::from(i64::MAX) + 1);
+        assert!(matches!(big, Term::BigInt(_)));
+        assert_eq!(big, Term::integer(BigInt::from(i64::MAX) + 1));
+        assert_eq!(big.compare(&Term::Int(i64::MAX)), Ordering::Greater);
+        assert_eq!(big.compare(&Term::from(1e30)), Ordering::Less);
+        assert_eq!(
+            Term::from(9.223372036854775808e18).compare(&big),
+            Ordering::Less
+        );
+        let neg = Term::integer(BigInt::from(i64::MIN) * 2);
+        assert_eq!(neg.compare(&Term::Int(i64::MIN)), Ordering::Less);
+        assert_eq!(big.to_string(), "9223372036854775808");
     }
 
     #[test]

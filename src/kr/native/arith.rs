@@ -1,37 +1,51 @@
 //! Arithmetic: `is/2`, comparison, `succ/2`, `plus/3`, random numbers. Evaluation is iterative
-//! (an explicit stack), integers are i64 with checked overflow.
+//! (an explicit stack), integers are i64 with checked overflow, and unbounded (`bigint`) past it.
 
+use super::bigint;
 use super::builtins::{inst, type_error, Flow, B};
 use super::machine::Solver;
-use super::store::Cell;
+use super::store::{Cell, Store};
 use crate::kr::error::{KrError, KrResult};
 use crate::term::{well_known as wk, Sym, Term};
 use rand::Rng;
 use std::cmp::Ordering;
 
 /// A number during evaluation.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub(crate) enum Num {
     I(i64),
     F(f64),
+    /// An integer outside the 64-bit range (never one inside it).
+    B(std::sync::Arc<num_bigint::BigInt>),
 }
 
 impl Num {
-    pub fn cell(self) -> Cell {
+    /// The number as a heap cell.
+    pub fn cell(self, st: &mut Store) -> Cell {
         match self {
             Num::I(i) => Cell::Int(i),
             Num::F(f) => Cell::Flt(f),
+            Num::B(b) => st.new_big(&b),
         }
     }
-    fn f(self) -> f64 {
+    /// The number as a float.
+    pub fn f(&self) -> f64 {
         match self {
-            Num::I(i) => i as f64,
-            Num::F(f) => f,
+            Num::I(i) => *i as f64,
+            Num::F(f) => *f,
+            Num::B(b) => bigint::to_f64(b),
         }
     }
 }
 
-fn eval_err(what: &str) -> KrError {
+/// True for the error of a 64-bit integer operation that overflowed (redone with big integers).
+fn is_overflow(e: &KrError) -> bool {
+    e.to_term()
+        .to_string()
+        .starts_with("error(evaluation_error(int_overflow)")
+}
+
+pub(crate) fn eval_err(what: &str) -> KrError {
     KrError::iso(
         Term::compound("evaluation_error", vec![Term::atom(what)]),
         None,
@@ -46,6 +60,7 @@ fn not_int(n: Num) -> KrError {
     let t = match n {
         Num::I(i) => Term::Int(i),
         Num::F(f) => Term::from(f),
+        Num::B(b) => Term::BigInt(b),
     };
     KrError::iso(
         Term::compound("type_error", vec![Term::atom("integer"), t]),
@@ -91,9 +106,10 @@ fn unknown(name: Sym, arity: usize) -> KrError {
     )
 }
 
-fn cmp_num(a: Num, b: Num) -> Ordering {
+fn cmp_num(a: &Num, b: &Num) -> Ordering {
     match (a, b) {
-        (Num::I(x), Num::I(y)) => x.cmp(&y),
+        (Num::I(x), Num::I(y)) => x.cmp(y),
+        (Num::B(_), _) | (_, Num::B(_)) => bigint::compare(a, b),
         _ => a.f().partial_cmp(&b.f()).unwrap_or(Ordering::Equal),
     }
 }
@@ -104,10 +120,8 @@ fn int_pow(base: i64, exp: i64) -> KrResult<Num> {
             1 => Ok(Num::I(1)),
             -1 => Ok(Num::I(if exp % 2 == 0 { 1 } else { -1 })),
             0 => Err(eval_err("zero_divisor")),
-            _ => Err(KrError::iso(
-                Term::compound("type_error", vec![Term::atom("float"), Term::Int(base)]),
-                None,
-            )),
+            // SWI (prefer_rationals false): a negative power of another integer is a float.
+            _ => check_float((base as f64).powf(exp as f64)),
         };
     }
     let e = u32::try_from(exp).map_err(|_| overflow())?;
@@ -133,6 +147,7 @@ impl Solver<'_, '_> {
                 W::Eval(c) => match self.m.st.deref(c) {
                     Cell::Int(i) => vals.push(Num::I(i)),
                     Cell::Flt(f) => vals.push(Num::F(f)),
+                    Cell::Big(i) => vals.push(bigint::norm(self.m.st.big(i))?),
                     Cell::Ref(_) => {
                         return Err(KrError::iso(Term::atom("instantiation_error"), None))
                     }
@@ -172,9 +187,10 @@ impl Solver<'_, '_> {
                 },
                 W::Apply(f, n) => {
                     let args = vals.split_off(vals.len() - n as usize);
-                    let v = match n {
-                        1 => self.eval1(f, args[0])?,
-                        2 => eval2(f, args[0], args[1])?,
+                    let mut args = args.into_iter();
+                    let v = match (n, args.next(), args.next()) {
+                        (1, Some(x), _) => self.eval1(f, x)?,
+                        (2, Some(x), Some(y)) => eval2(f, x, y)?,
                         _ => return Err(unknown(f, n as usize)),
                     };
                     vals.push(v);
@@ -209,8 +225,21 @@ impl Solver<'_, '_> {
     }
 
     fn eval1(&mut self, f: Sym, x: Num) -> KrResult<Num> {
+        if let Num::B(_) = x {
+            return match bigint::eval1(f, &x)? {
+                Some(v) => Ok(v),
+                None => self.eval1_small(f, Num::F(x.f())),
+            };
+        }
+        match self.eval1_small(f, x.clone()) {
+            Err(e) if is_overflow(&e) => bigint::eval1(f, &x)?.ok_or(e),
+            r => r,
+        }
+    }
+
+    fn eval1_small(&mut self, f: Sym, x: Num) -> KrResult<Num> {
         use Num::{F, I};
-        Ok(match (f.name(), x) {
+        Ok(match (f.name(), x.clone()) {
             ("-", I(i)) => I(i.checked_neg().ok_or_else(overflow)?),
             ("-", F(v)) => F(-v),
             ("+", _) => x,
@@ -287,8 +316,21 @@ fn cputime() -> f64 {
 }
 
 fn eval2(f: Sym, x: Num, y: Num) -> KrResult<Num> {
+    if matches!(x, Num::B(_)) || matches!(y, Num::B(_)) {
+        return match bigint::eval2(f, &x, &y)? {
+            Some(v) => Ok(v),
+            None => eval2_small(f, Num::F(x.f()), Num::F(y.f())),
+        };
+    }
+    match eval2_small(f, x.clone(), y.clone()) {
+        Err(e) if is_overflow(&e) => bigint::eval2(f, &x, &y)?.ok_or(e),
+        r => r,
+    }
+}
+
+fn eval2_small(f: Sym, x: Num, y: Num) -> KrResult<Num> {
     use Num::{F, I};
-    Ok(match (f.name(), x, y) {
+    Ok(match (f.name(), x.clone(), y.clone()) {
         ("+", I(a), I(b)) => I(a.checked_add(b).ok_or_else(overflow)?),
         ("-", I(a), I(b)) => I(a.checked_sub(b).ok_or_else(overflow)?),
         ("*", I(a), I(b)) => I(a.checked_mul(b).ok_or_else(overflow)?),
@@ -349,20 +391,12 @@ fn eval2(f: Sym, x: Num, y: Num) -> KrResult<Num> {
                 q
             })
         }
-        ("min", _, _) => {
-            if cmp_num(y, x) == Ordering::Less {
-                y
-            } else {
-                x
-            }
-        }
-        ("max", _, _) => {
-            if cmp_num(y, x) == Ordering::Greater {
-                y
-            } else {
-                x
-            }
-        }
+        // Equal values of mixed types give the float, as in SWI (`max(1, 1.0)` is `1.0`).
+        ("min" | "max", _, _) => match (cmp_num(&y, &x), f.name(), &y) {
+            (Ordering::Less, "min", _) | (Ordering::Greater, "max", _) => y,
+            (Ordering::Equal, _, F(_)) => y,
+            _ => x,
+        },
         ("**", I(a), I(b)) => {
             if b < 0 {
                 check_float((a as f64).powf(b as f64))?
@@ -427,14 +461,14 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
     let ok = |x: bool| if x { Flow::True } else { Flow::Fail };
     Ok(Some(match b {
         B::Is => {
-            let v = s.eval(s.a(p, 1))?.cell();
+            let v = s.eval(s.a(p, 1))?.cell(&mut s.m.st);
             let x = s.a(p, 0);
             ok(s.unify(x, v))
         }
         B::ArEq | B::ArNe | B::ArLt | B::ArLe | B::ArGt | B::ArGe => {
             let x = s.eval(s.a(p, 0))?;
             let y = s.eval(s.a(p, 1))?;
-            let o = cmp_num(x, y);
+            let o = cmp_num(&x, &y);
             let nan = x.f().is_nan() || y.f().is_nan();
             ok(!nan
                 && match b {
@@ -532,7 +566,8 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
                 acc = eval2(wk::PLUS, acc, v)?;
             }
             let y = s.a(p, 1);
-            ok(s.unify(y, acc.cell()))
+            let v = acc.cell(&mut s.m.st);
+            ok(s.unify(y, v))
         }
         B::MaxEval => {
             // '$max_eval'(Items, max|min, Result): numeric extreme of evaluated items.
@@ -544,7 +579,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
                 best = Some(match best {
                     None => v,
                     Some(b) => {
-                        let o = cmp_num(v, b);
+                        let o = cmp_num(&v, &b);
                         if (want_max && o == Ordering::Greater)
                             || (!want_max && o == Ordering::Less)
                         {
@@ -559,7 +594,8 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
                 None => Flow::Fail,
                 Some(v) => {
                     let y = s.a(p, 2);
-                    ok(s.unify(y, v.cell()))
+                    let v = v.cell(&mut s.m.st);
+                    ok(s.unify(y, v))
                 }
             }
         }
@@ -572,8 +608,9 @@ pub(crate) fn compare_cells(s: &Solver, a: Cell, b: Cell, name: &str) -> KrResul
     let n = |c: Cell| match s.m.st.deref(c) {
         Cell::Int(i) => Ok(Num::I(i)),
         Cell::Flt(f) => Ok(Num::F(f)),
+        Cell::Big(i) => bigint::norm(s.m.st.big(i)),
         Cell::Ref(_) => Err(inst(name, 2)),
         other => Err(type_error(s, "number", other, name, 2)),
     };
-    Ok(cmp_num(n(a)?, n(b)?))
+    Ok(cmp_num(&n(a)?, &n(b)?))
 }

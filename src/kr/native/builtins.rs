@@ -70,7 +70,7 @@ builtins! {
     WriteTerm "write_term" [2, 3] false;
     Nl "nl" [0, 1] false; Format "format" [1, 2, 3] false; PrintMessage "print_message" [2] false;
     GetTime "get_time" [1] false;
-    Length "length" [2] true; Memberchk "memberchk" [2] true; Reverse "reverse" [2] true;
+    Length "length" [2] true; Delete "delete" [3] true; Memberchk "memberchk" [2] true; Reverse "reverse" [2] true;
     Msort "msort" [2] true; Sort "sort" [2] false; Sort4 "sort" [4] false; Keysort "keysort" [2] false;
     Predsort "predsort" [3] true;
     Nth0 "nth0" [3] true; Nth1 "nth1" [3] true; SumList "sum_list" [2] true; SumList2 "sumlist" [2] true;
@@ -83,6 +83,9 @@ builtins! {
     OrdInsert "ord_insert" [3] true; OrdAddElement "ord_add_element" [3] true;
     OrdDelElement "ord_del_element" [3] true; OrdSubset "ord_subset" [2] true;
     ListToOrdSet "list_to_ord_set" [2] true; OrdEmpty "ord_empty" [1] true;
+    RandomSelect "random_select" [3] true; Randseq "randseq" [3] true; Randset "randset" [3] true;
+    CharType "char_type" [2] false; CodeType "code_type" [2] false;
+    TextToString "text_to_string" [2] false;
     SumEval "$sum_eval" [2] false; MaxEval "$max_eval" [3] false; BagofPrep "$bagof_prep" [4] false;
     BagofGroups "$bagof_groups" [2] false; Protected "$protected" [] false;
 }
@@ -259,8 +262,11 @@ pub(crate) fn det(s: &mut Solver, b: B, g: Cell, p: u32) -> KrResult<Flow> {
         B::Var => bool_flow(matches!(s.ad(p, 0), Cell::Ref(_))),
         B::Nonvar => bool_flow(!matches!(s.ad(p, 0), Cell::Ref(_))),
         B::Atom => bool_flow(matches!(s.ad(p, 0), Cell::Atom(_))),
-        B::Number => bool_flow(matches!(s.ad(p, 0), Cell::Int(_) | Cell::Flt(_))),
-        B::Integer => bool_flow(matches!(s.ad(p, 0), Cell::Int(_))),
+        B::Number => bool_flow(matches!(
+            s.ad(p, 0),
+            Cell::Int(_) | Cell::Flt(_) | Cell::Big(_)
+        )),
+        B::Integer => bool_flow(matches!(s.ad(p, 0), Cell::Int(_) | Cell::Big(_))),
         B::Float => bool_flow(matches!(s.ad(p, 0), Cell::Flt(_))),
         B::Atomic => bool_flow(!matches!(s.ad(p, 0), Cell::Ref(_) | Cell::Ptr(_))),
         B::Compound => bool_flow(matches!(s.ad(p, 0), Cell::Ptr(_))),
@@ -301,6 +307,9 @@ pub(crate) fn det(s: &mut Solver, b: B, g: Cell, p: u32) -> KrResult<Flow> {
                 return Ok(f);
             }
             if let Some(f) = output::det(s, b, p, arity)? {
+                return Ok(f);
+            }
+            if let Some(f) = super::library::det(s, b, p)? {
                 return Ok(f);
             }
             Flow::Fail

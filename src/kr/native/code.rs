@@ -34,7 +34,8 @@ impl Key {
             Term::Atom(s) => Key::Atom(*s),
             Term::Int(i) => Key::Int(*i),
             Term::Float(f) => Key::Flt(if f.0 == 0.0 { 0 } else { f.0.to_bits() }),
-            Term::Str(_) => Key::Str,
+            // Strings and big integers share a key: unification tells them apart.
+            Term::Str(_) | Term::BigInt(_) => Key::Str,
             Term::Compound(c) => Key::Fun(c.name, c.args.len() as u32),
             Term::Var(_) => return None,
         })
@@ -47,7 +48,7 @@ impl Key {
             Cell::Atom(s) => Key::Atom(s),
             Cell::Int(i) => Key::Int(i),
             Cell::Flt(f) => Key::Flt(if f == 0.0 { 0 } else { f.to_bits() }),
-            Cell::Str(_) => Key::Str,
+            Cell::Str(_) | Cell::Big(_) => Key::Str,
             Cell::Ptr(p) => match store.heap[p as usize] {
                 Cell::Fun(s, n) => Key::Fun(s, n),
                 _ => return None,
@@ -70,6 +71,10 @@ impl Code {
                 Term::Str(s) => {
                     self.strs.push(s.clone());
                     Cell::Str(self.strs.len() as u32 - 1)
+                }
+                Term::BigInt(b) => {
+                    self.strs.push(std::sync::Arc::from(b.to_string().as_str()));
+                    Cell::Big(self.strs.len() as u32 - 1)
                 }
                 Term::Var(v) => {
                     let n = if *v == wk::UNDERSCORE {
@@ -132,6 +137,10 @@ impl Code {
                     self.strs.push(store.strs[i as usize].clone());
                     Cell::Str(self.strs.len() as u32 - 1)
                 }
+                Cell::Big(i) => {
+                    self.strs.push(store.strs[i as usize].clone());
+                    Cell::Big(self.strs.len() as u32 - 1)
+                }
                 Cell::Ptr(p) => {
                     let Cell::Fun(f, n) = store.heap[p as usize] else {
                         continue;
@@ -167,6 +176,10 @@ impl Code {
             }
             Cell::Ref(_) => store.new_var(),
             Cell::Str(i) => store.new_str(self.strs[i as usize].clone()),
+            Cell::Big(i) => {
+                store.new_str(self.strs[i as usize].clone());
+                Cell::Big(store.strs.len() as u32 - 1)
+            }
             Cell::Ptr(off) => {
                 let mut work = std::mem::take(&mut store.build_work);
                 let p = self.build_struct(store, off, slots, &mut work);
@@ -208,6 +221,10 @@ impl Code {
                 Cell::Str(j) => {
                     store.strs.push(self.strs[j as usize].clone());
                     Cell::Str(store.strs.len() as u32 - 1)
+                }
+                Cell::Big(j) => {
+                    store.strs.push(self.strs[j as usize].clone());
+                    Cell::Big(store.strs.len() as u32 - 1)
                 }
                 Cell::Ptr(o) => {
                     work.push((a, o));
@@ -341,6 +358,19 @@ impl Code {
                         store.bind(a, c);
                     }
                     Cell::Str(j) => {
+                        if store.strs[j as usize] != self.strs[i as usize] {
+                            return false;
+                        }
+                    }
+                    _ => return false,
+                },
+                Cell::Big(i) => match store.deref(heap) {
+                    Cell::Ref(a) => {
+                        store.new_str(self.strs[i as usize].clone());
+                        let c = Cell::Big(store.strs.len() as u32 - 1);
+                        store.bind(a, c);
+                    }
+                    Cell::Big(j) => {
                         if store.strs[j as usize] != self.strs[i as usize] {
                             return false;
                         }

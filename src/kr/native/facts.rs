@@ -203,6 +203,11 @@ impl<'a> Solver<'a, '_> {
                         return false;
                     }
                 }
+                (Cell::Big(i), Term::BigInt(b)) => {
+                    if *self.m.st.strs[i as usize] != *b.to_string() {
+                        return false;
+                    }
+                }
                 (Cell::Ptr(p), Term::Compound(k)) => {
                     if self.m.st.heap[p as usize].fun() != Some((k.name, k.args.len() as u32)) {
                         return false;

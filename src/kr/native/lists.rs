@@ -80,6 +80,24 @@ fn ord_merge(s: &Solver, a: &[Cell], b: &[Cell], keep: (bool, bool, bool)) -> Ve
     out
 }
 
+/// `nth0/3` and `nth1/3` past the end of a partial list ending in `end`: the list is extended
+/// with `k` fresh items, then `elem`, then a fresh tail (as SWI's library does).
+fn nth_extend(s: &mut Solver, end: Cell, k: i64, elem: Cell) -> Flow {
+    let end = s.m.st.deref(end);
+    if !matches!(end, Cell::Ref(_)) || k > 100_000_000 {
+        return Flow::Fail;
+    }
+    let mut items: Vec<Cell> = (0..k).map(|_| s.m.st.new_var()).collect();
+    items.push(elem);
+    let tail = s.m.st.new_var();
+    let l = s.m.st.new_list(&items, tail);
+    if s.unify(end, l) {
+        Flow::True
+    } else {
+        Flow::Fail
+    }
+}
+
 /// List built-ins; `None` when `b` is not one of them.
 pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
     Ok(Some(match b {
@@ -99,6 +117,15 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
                     }
                 }
                 Cell::Ref(_) => match n {
+                    Cell::Int(k) if k < 0 => {
+                        return Err(super::builtins::domain_error(
+                            s,
+                            "not_less_than_zero",
+                            n,
+                            "length",
+                            2,
+                        ))
+                    }
                     Cell::Int(k) => {
                         if k < items.len() as i64 {
                             return Ok(Some(Flow::Fail));
@@ -132,7 +159,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
                     }
                     other => return Err(type_error(s, "integer", other, "length", 2)),
                 },
-                _ => Flow::Fail,
+                _ => return Err(type_error(s, "list", s.a(p, 0), "length", 2)),
             }
         }
         B::Memberchk => {
@@ -167,10 +194,36 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
             }
         }
         B::Reverse => {
-            let mut items = proper(s, s.a(p, 0), "reverse", 2)?;
+            let (mut items, end) = s.m.st.list_items(s.a(p, 0));
+            if let Cell::Ref(_) = end {
+                // A partial list: SWI's definition, bounded by the length of the second list
+                // (with neither list proper, SWI's answers never end: an error here).
+                proper(s, s.a(p, 1), "reverse", 2)?;
+                let (x, y) = (s.a(p, 0), s.a(p, 1));
+                return Ok(Some(Flow::Call(goal(s, "$reverse", &[x, NIL, y, y]))));
+            }
+            if !matches!(end, Cell::Atom(n) if n == wk::NIL) {
+                return Err(type_error(s, "list", s.a(p, 0), "reverse", 2));
+            }
             items.reverse();
             let y = s.a(p, 1);
             unify_list(s, &items, y)
+        }
+        B::Delete => {
+            // SWI: drop every item that unifies with the element (without binding either).
+            let items = proper(s, s.a(p, 0), "delete", 3)?;
+            let x = s.a(p, 1);
+            let mut keep = Vec::with_capacity(items.len());
+            for it in items {
+                let mark = s.m.st.trail.len();
+                let unifies = s.unify(it, x);
+                s.m.st.undo(mark);
+                if !unifies {
+                    keep.push(it);
+                }
+            }
+            let y = s.a(p, 2);
+            unify_list(s, &keep, y)
         }
         B::Msort | B::Sort | B::ListToOrdSet => {
             let mut items = proper(s, s.a(p, 0), "sort", 2)?;
@@ -283,7 +336,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32) -> KrResult<Option<Flow>> {
                                 k -= 1;
                                 l = t;
                             }
-                            None => return Ok(Some(Flow::Fail)),
+                            None => return Ok(Some(nth_extend(s, l, k, s.a(p, 2)))),
                         }
                     }
                 }

@@ -1,14 +1,16 @@
 //! The native Prolog engine: a binding store (`store`), compiled clauses (`code`), the iterative
 //! solver (`machine`) with its control constructs (`control`) and fact lookup (`facts`), and the
-//! built-ins (`builtins`, `arith`, `text`, `lists`, `output`, `prelude`).
+//! built-ins (`builtins`, `arith`, `text`, `lists`, `output`, `prelude`, `library`).
 
 pub(crate) mod arith;
+pub(crate) mod bigint;
 pub(crate) mod budget;
 pub(crate) mod builtins;
 pub(crate) mod catch;
 pub(crate) mod code;
 pub(crate) mod control;
 pub(crate) mod facts;
+pub mod library;
 pub(crate) mod lists;
 pub(crate) mod machine;
 pub(crate) mod output;

@@ -8,40 +8,17 @@ use super::store::{Cell, VarNames};
 use super::text::text_of;
 use crate::kr::error::{KrError, KrResult};
 use crate::term::print::format_float;
+use crate::term::print::Options;
 use crate::term::{well_known as wk, Style, Sym, Term};
 use std::sync::Arc;
 
 /// Largest column or repeat count a format directive may use.
 const MAX_FORMAT_COUNT: i64 = 100_000;
 
-/// Deepest term the printer is asked to write (it recurses on nesting, except along list
-/// tails).
-const MAX_PRINT_DEPTH: usize = 10_000;
-
-/// A heap term as text in the given style (a resource error for terms nested too deeply to
-/// print safely).
+/// A heap term as text in the given style (the writer is iterative: any depth prints).
 pub(crate) fn text(s: &Solver, c: Cell, style: Style) -> KrResult<String> {
     if s.m.st.is_cyclic(c) {
         return Err(super::machine::cyclic());
-    }
-    let mut stack = vec![(c, 1usize)];
-    while let Some((c, d)) = stack.pop() {
-        if d > MAX_PRINT_DEPTH {
-            return Err(KrError::iso(
-                Term::compound("resource_error", vec![Term::atom("print_depth")]),
-                None,
-            ));
-        }
-        if let Cell::Ptr(p) = s.m.st.deref(c) {
-            match s.m.st.heap[p as usize].fun() {
-                Some((f, 2)) if f == wk::DOT => {
-                    stack.push((s.a(p, 0), d + 1));
-                    stack.push((s.a(p, 1), d));
-                }
-                Some((_, n)) => stack.extend((0..n).map(|i| (s.a(p, i), d + 1))),
-                None => {}
-            }
-        }
     }
     Ok(s.m.st.to_term(c, &mut VarNames::new(&[])).to_text(style))
 }
@@ -143,10 +120,17 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
             }
             'd' | 'D' => {
                 let a = next_arg("d")?;
-                let Cell::Int(v) = s.m.st.deref(a) else {
-                    return Err(format_error("~d expects an integer argument"));
+                let (negative, mut digits) = match s.m.st.deref(a) {
+                    Cell::Int(v) => (v < 0, v.unsigned_abs().to_string()),
+                    Cell::Big(i) => {
+                        let text = &s.m.st.strs[i as usize];
+                        (
+                            text.starts_with('-'),
+                            text.trim_start_matches('-').to_string(),
+                        )
+                    }
+                    _ => return Err(format_error("~d expects an integer argument")),
                 };
-                let mut digits = v.unsigned_abs().to_string();
                 let group = d == 'D';
                 let dec = num.unwrap_or(0).max(0) as usize;
                 let mut frac = String::new();
@@ -166,7 +150,7 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
                     }
                     digits = g;
                 }
-                if v < 0 {
+                if negative {
                     out.push('-');
                 }
                 out.push_str(&digits);
@@ -183,6 +167,7 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
                     _ => s.eval(a).map(|n| match n {
                         super::arith::Num::I(v) => v as f64,
                         super::arith::Num::F(v) => v,
+                        n @ super::arith::Num::B(_) => n.f(),
                     })?,
                 };
                 let prec = num.unwrap_or(6).clamp(0, 60) as usize;
@@ -254,10 +239,10 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
                     (_, n) => seg_col + n.unwrap_or(8) as usize,
                 };
                 if target > col {
-                    let pad = target - col;
-                    let (pos, ch) = fills.first().copied().unwrap_or((out.len(), fill));
-                    let padding: String = std::iter::repeat_n(ch, pad).collect();
-                    out.insert_str(pos, &padding);
+                    if fills.is_empty() {
+                        fills.push((out.len(), fill));
+                    }
+                    distribute_pad(&mut out, &fills, target - col);
                 }
                 seg_start = out.len();
                 fills.clear();
@@ -269,6 +254,41 @@ pub(crate) fn format(s: &mut Solver, fmt: &str, args: &[Cell]) -> KrResult<Strin
         return Err(format_error("too many arguments"));
     }
     Ok(out)
+}
+
+/// Spreads `pad` fill characters over the fill points of a column (`~t`), as SWI does: evenly,
+/// the remainder going to the leftmost points.
+fn distribute_pad(out: &mut String, fills: &[(usize, char)], pad: usize) {
+    let (each, extra) = (pad / fills.len(), pad % fills.len());
+    // Right to left, so earlier positions stay valid.
+    for (i, (pos, ch)) in fills.iter().enumerate().rev() {
+        let n = each + usize::from(i < extra);
+        let padding: String = std::iter::repeat_n(*ch, n).collect();
+        out.insert_str(*pos, &padding);
+    }
+}
+
+/// The `write_term/2,3` options that change the text: `quoted(Bool)`, `ignore_ops(Bool)`,
+/// `max_depth(N)`; others are accepted and ignored.
+fn write_options(s: &Solver, list: Cell) -> Options {
+    let mut o = Options::new(Style::WRITE);
+    let (items, _) = s.m.st.list_items(list);
+    for it in items {
+        let Cell::Ptr(q) = s.m.st.deref(it) else {
+            continue;
+        };
+        let Some((name, 1)) = s.m.st.heap[q as usize].fun() else {
+            continue;
+        };
+        let on = matches!(s.ad(q, 0), Cell::Atom(a) if a == wk::TRUE);
+        match (name.name(), s.ad(q, 0)) {
+            ("quoted", _) => o.style.quoted = on,
+            ("ignore_ops", _) => o.style.operators = !on,
+            ("max_depth", Cell::Int(n)) => o.max_depth = n.clamp(0, 1 << 20) as usize,
+            _ => {}
+        }
+    }
+    o
 }
 
 fn format_args(s: &Solver, c: Cell) -> Vec<Cell> {
@@ -299,8 +319,14 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
             emit(s, &t);
         }
         B::WriteTerm => {
-            let t = text(s, s.a(p, if arity == 3 { 1 } else { 0 }), Style::WRITE)?;
-            emit(s, &t);
+            let (ti, oi) = if arity == 3 { (1, 2) } else { (0, 1) };
+            let options = write_options(s, s.a(p, oi));
+            let c = s.a(p, ti);
+            if s.m.st.is_cyclic(c) {
+                return Err(super::machine::cyclic());
+            }
+            let t = s.m.st.to_term(c, &mut VarNames::new(&[]));
+            emit(s, &t.to_text_with(options));
         }
         B::Nl => emit(s, "\n"),
         B::Tab => {

@@ -16,8 +16,11 @@ append(Ls, L) :- '$append_all'(Ls, L).
 '$nth_enum'([H|T], B, I, E) :- '$nth_enum_'(T, H, B, I, E).
 '$nth_enum_'(_, H, B, B, H).
 '$nth_enum_'([H|T], _, B0, I, E) :- B1 is B0 + 1, '$nth_enum_'(T, H, B1, I, E).
-last([X], X) :- !.
-last([_|T], X) :- last(T, X).
+'$reverse'([], Ys, Ys, []).
+'$reverse'([X|Xs], Rs, Ys, [_|Bound]) :- '$reverse'(Xs, [X|Rs], Ys, Bound).
+last([X|Xs], Last) :- '$last'(Xs, X, Last).
+'$last'([], Last, Last).
+'$last'([X|Xs], _, Last) :- '$last'(Xs, X, Last).
 nextto(X, Y, [X,Y|_]).
 nextto(X, Y, [_|T]) :- nextto(X, Y, T).
 select(X, [X|T], T).
@@ -35,9 +38,6 @@ intersection([_|T], L, R) :- intersection(T, L, R).
 union([], L, L).
 union([H|T], L, R) :- memberchk(H, L), !, union(T, L, R).
 union([H|T], L, [H|R]) :- union(T, L, R).
-delete([], _, []).
-delete([H|T], X, R) :- H \= X, !, R = [H|R1], delete(T, X, R1).
-delete([_|T], X, R) :- delete(T, X, R).
 exclude(_, [], []).
 exclude(P, [H|T], R) :- ( call(P, H) -> R = R1 ; R = [H|R1] ), exclude(P, T, R1).
 include(_, [], []).
@@ -45,7 +45,7 @@ include(P, [H|T], R) :- ( call(P, H) -> R = [H|R1] ; R = R1 ), include(P, T, R1)
 partition(_, [], [], []).
 partition(P, [H|T], I, E) :- ( call(P, H) -> I = [H|I1], E = E1 ; I = I1, E = [H|E1] ), partition(P, T, I1, E1).
 partition(_, [], [], [], []).
-partition(P, [H|T], L, E, G) :- call(P, O, H), '$partition5'(O, H, L, E, G, L1, E1, G1), partition(P, T, L1, E1, G1).
+partition(P, [H|T], L, E, G) :- call(P, H, O), '$partition5'(O, H, L, E, G, L1, E1, G1), partition(P, T, L1, E1, G1).
 '$partition5'(<, H, [H|L], E, G, L, E, G).
 '$partition5'(=, H, L, [H|E], G, L, E, G).
 '$partition5'(>, H, L, E, [H|G], L, E, G).
@@ -66,6 +66,35 @@ foldl(G, L1, L2, V0, V) :- '$foldl'(L1, L2, G, V0, V).
 foldl(G, L1, L2, L3, V0, V) :- '$foldl'(L1, L2, L3, G, V0, V).
 '$foldl'([], [], [], _, V, V).
 '$foldl'([X|Xs], [Y|Ys], [Z|Zs], G, V0, V) :- call(G, X, Y, Z, V0, V1), '$foldl'(Xs, Ys, Zs, G, V1, V).
+nth0(I, L, E, R) :- integer(I), !, I >= 0, '$nth_del'(I, L, E, R).
+nth0(I, L, E, R) :- var(I), '$nth_gen'(L, E, R, 0, I).
+nth1(I, L, E, R) :- integer(I), !, I0 is I - 1, I0 >= 0, '$nth_del'(I0, L, E, R).
+nth1(I, L, E, R) :- var(I), '$nth_gen'(L, E, R, 1, I).
+'$nth_del'(0, [E|R], E, R) :- !.
+'$nth_del'(I, [H|T], E, [H|R]) :- I1 is I - 1, '$nth_del'(I1, T, E, R).
+'$nth_gen'([E|R], E, R, B, B).
+'$nth_gen'([H|T], E, [H|R], B0, I) :- B1 is B0 + 1, '$nth_gen'(T, E, R, B1, I).
+proper_length(L, N) :- is_list(L), length(L, N).
+is_set(Set) :- is_list(Set), length(Set, N), sort(Set, Sorted), length(Sorted, N).
+subset([], _) :- !.
+subset([E|R], Set) :- memberchk(E, Set), subset(R, Set).
+selectchk(X, Xs, Y, Ys) :- select(X, Xs, Y, Ys), !.
+subseq([], [], []).
+subseq([H|T], [H|S], R) :- subseq(T, S, R).
+subseq([H|T], S, [H|R]) :- subseq(T, S, R).
+max_member(P, M, [H|T]) :- '$max_member'(T, P, H, M).
+'$max_member'([], _, M, M).
+'$max_member'([H|T], P, M0, M) :- ( call(P, M0, H) -> M1 = H ; M1 = M0 ), '$max_member'(T, P, M1, M).
+min_member(P, M, [H|T]) :- '$min_member'(T, P, H, M).
+'$min_member'([], _, M, M).
+'$min_member'([H|T], P, M0, M) :- ( call(P, H, M0) -> M1 = H ; M1 = M0 ), '$min_member'(T, P, M1, M).
+clumped([], []).
+clumped([H|T0], [H-C|T]) :- '$clump_run'(T0, H, 1, C, T1), clumped(T1, T).
+'$clump_run'([H|T0], E, C0, C, T) :- E == H, !, C1 is C0 + 1, '$clump_run'(T0, E, C1, C, T).
+'$clump_run'(L, _, C, C, L).
+maplist(_, [], [], [], [], []).
+maplist(P, [A|As], [B|Bs], [C|Cs], [D|Ds], [E|Es]) :- call(P, A, B, C, D, E), maplist(P, As, Bs, Cs, Ds, Es).
+divmod(Dividend, Divisor, Q, R) :- Q is div(Dividend, Divisor), R is Dividend mod Divisor.
 permutation([], []).
 permutation(L, [H|T]) :- '$perm_len'(L, [H|T]), select(H, L, R), permutation(R, T).
 '$perm_len'(L, P) :- ( is_list(L) -> length(L, N), length(P, N) ; is_list(P) -> length(P, N), length(L, N) ; true ).

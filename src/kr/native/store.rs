@@ -17,6 +17,8 @@ pub(crate) enum Cell {
     Flt(f64),
     /// A string, by index into the store's string table.
     Str(u32),
+    /// An integer beyond 64 bits: its decimal digits, by index into the string table.
+    Big(u32),
     Ptr(u32),
     Fun(Sym, u32),
 }
@@ -184,6 +186,17 @@ impl Store {
         Cell::Str(self.strs.len() as u32 - 1)
     }
 
+    /// A big-integer cell (the caller makes sure `n` does not fit in an `Int`).
+    pub fn new_big(&mut self, n: &num_bigint::BigInt) -> Cell {
+        self.strs.push(Arc::from(n.to_string().as_str()));
+        Cell::Big(self.strs.len() as u32 - 1)
+    }
+
+    /// The value of a big-integer cell's digits.
+    pub fn big(&self, i: u32) -> num_bigint::BigInt {
+        self.strs[i as usize].parse().unwrap_or_default()
+    }
+
     /// A compound term with the given arguments.
     pub fn new_struct(&mut self, name: Sym, args: &[Cell]) -> Cell {
         if args.is_empty() {
@@ -264,7 +277,9 @@ impl Store {
             (Cell::Atom(x), Cell::Atom(y)) => x == y,
             (Cell::Int(x), Cell::Int(y)) => x == y,
             (Cell::Flt(x), Cell::Flt(y)) => Float(x) == Float(y),
-            (Cell::Str(x), Cell::Str(y)) => self.strs[x as usize] == self.strs[y as usize],
+            (Cell::Str(x), Cell::Str(y)) | (Cell::Big(x), Cell::Big(y)) => {
+                self.strs[x as usize] == self.strs[y as usize]
+            }
             _ => false,
         }
     }
@@ -389,6 +404,7 @@ impl Store {
             Term::Int(i) => Cell::Int(*i),
             Term::Float(f) => Cell::Flt(f.0),
             Term::Str(s) => self.new_str(s.clone()),
+            Term::BigInt(b) => self.new_big(b),
             Term::Var(v) => {
                 if *v == wk::UNDERSCORE {
                     Cell::Ref(slot)
@@ -449,6 +465,7 @@ impl Store {
                     Cell::Int(i) => out.push(Term::Int(i)),
                     Cell::Flt(f) => out.push(Term::Float(Float(f))),
                     Cell::Str(i) => out.push(Term::Str(self.strs[i as usize].clone())),
+                    Cell::Big(i) => out.push(Term::integer(self.big(i))),
                     Cell::Ptr(p) => {
                         if let Cell::Fun(s, n) = self.heap[p as usize] {
                             work.push(Work::Build(s, n));
@@ -472,7 +489,7 @@ impl Store {
     fn order_class(c: Cell) -> u8 {
         match c {
             Cell::Ref(_) => 0,
-            Cell::Int(_) | Cell::Flt(_) => 1,
+            Cell::Int(_) | Cell::Flt(_) | Cell::Big(_) => 1,
             Cell::Atom(_) => 3,
             Cell::Str(_) => 4,
             _ => 5,
@@ -546,7 +563,18 @@ impl Store {
                 }
             }
             (Cell::Str(x), Cell::Str(y)) => self.strs[x as usize].cmp(&self.strs[y as usize]),
+            (Cell::Big(_), _) | (_, Cell::Big(_)) => self.number(a).compare(&self.number(b)),
             _ => Ordering::Equal,
+        }
+    }
+
+    /// A number cell as a term (for comparisons involving big integers).
+    fn number(&self, c: Cell) -> Term {
+        match c {
+            Cell::Int(i) => Term::Int(i),
+            Cell::Flt(f) => Term::Float(Float(f)),
+            Cell::Big(i) => Term::integer(self.big(i)),
+            _ => Term::Atom(wk::NIL),
         }
     }
 

@@ -3,7 +3,7 @@
 
 use super::builtins::{goal, inst, type_error, Flow, B};
 use super::machine::Solver;
-use super::store::Cell;
+use super::store::{Cell, Store};
 use crate::kr::error::{KrError, KrResult};
 use crate::term::print::format_float;
 use crate::term::{well_known as wk, Style, Sym, Term};
@@ -15,6 +15,7 @@ pub(crate) fn text_of(s: &Solver, c: Cell) -> Option<String> {
         Cell::Atom(a) => Some(a.name().to_string()),
         Cell::Str(i) => Some(s.m.st.strs[i as usize].to_string()),
         Cell::Int(i) => Some(i.to_string()),
+        Cell::Big(i) => Some(s.m.st.strs[i as usize].to_string()),
         Cell::Flt(f) => Some(format_float(f)),
         c @ Cell::Ptr(_) => {
             let (items, end) = s.m.st.list_items(c);
@@ -72,7 +73,7 @@ fn list_text_error(s: &Solver, l: Cell, as_codes: bool, name: &str) -> KrError {
 }
 
 /// Parses a Prolog number (`12`, `-3`, `2.5e3`, `0x1f`, `0'a`).
-pub(crate) fn parse_number(text: &str) -> Option<Cell> {
+pub(crate) fn parse_number(st: &mut Store, text: &str) -> Option<Cell> {
     let t = text.trim();
     let (neg, body) = match t.strip_prefix('-') {
         Some(r) => (true, r),
@@ -100,8 +101,12 @@ pub(crate) fn parse_number(text: &str) -> Option<Cell> {
     }
     let clean: String = body.chars().filter(|c| *c != '_').collect();
     if clean.chars().all(|c| c.is_ascii_digit()) {
-        let v: i64 = clean.parse().ok()?;
-        return Some(Cell::Int(sign * v));
+        let v: num_bigint::BigInt = clean.parse().ok()?;
+        let v = if neg { -v } else { v };
+        return Some(match i64::try_from(&v) {
+            Ok(i) => Cell::Int(i),
+            Err(_) => st.new_big(&v),
+        });
     }
     // A float needs digits on both sides of the dot (Prolog syntax), or an exponent.
     let ok = {
@@ -172,7 +177,7 @@ fn is_var(s: &Solver, p: u32, i: u32) -> bool {
 }
 
 /// Enumerates the given alternatives for the arguments listed: `member(Args, [Alt...])`.
-fn enumerate(s: &mut Solver, args: &[Cell], alts: Vec<Vec<Cell>>) -> Flow {
+pub(crate) fn enumerate(s: &mut Solver, args: &[Cell], alts: Vec<Vec<Cell>>) -> Flow {
     let f = Sym::intern("$alt");
     let target = s.m.st.new_struct(f, args);
     let items: Vec<Cell> = alts.into_iter().map(|a| s.m.st.new_struct(f, &a)).collect();
@@ -272,17 +277,13 @@ fn sub_text(s: &mut Solver, p: u32, k: Kind, name: &str) -> KrResult<Flow> {
     Ok(enumerate(s, &args, alts))
 }
 
-fn number_from(s: &Solver, text: &str, name: &str, arity: usize) -> KrResult<Cell> {
-    parse_number(text)
-        .ok_or_else(|| {
-            KrError::iso(
-                Term::compound("syntax_error", vec![Term::atom("illegal_number")]),
-                Some((Sym::intern(name), arity)),
-            )
-        })
-        .inspect(|_| {
-            let _ = s;
-        })
+fn number_from(s: &mut Solver, text: &str, name: &str, arity: usize) -> KrResult<Cell> {
+    parse_number(&mut s.m.st, text).ok_or_else(|| {
+        KrError::iso(
+            Term::compound("syntax_error", vec![Term::atom("illegal_number")]),
+            Some((Sym::intern(name), arity)),
+        )
+    })
 }
 
 /// Text built-ins; `None` when `b` is not one of them.
@@ -379,7 +380,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
             };
             if !is_var(s, p, ti) {
                 let t = need_text(s, p, ti, name, 2)?;
-                match parse_number(&t) {
+                match parse_number(&mut s.m.st, &t) {
                     Some(v) => {
                         let y = s.a(p, ni);
                         unify_flow(s, y, v)
@@ -431,11 +432,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
                 _ => ("string_lower", false, Kind::Str),
             };
             let t = need_text(s, p, 0, name, 2)?;
-            let r = if up {
-                t.to_uppercase()
-            } else {
-                t.to_lowercase()
-            };
+            let r = change_case(&t, up);
             let v = make(s, k, &r);
             let y = s.a(p, 1);
             unify_flow(s, y, v)
@@ -573,4 +570,22 @@ fn read_term(
         .filter(|(v, _)| !v.name().starts_with('_'))
         .collect();
     Ok((c, named))
+}
+
+/// Maps each character to its upper or lower case as C's `towupper`/`towlower` (and so SWI)
+/// do: one character for one, keeping those whose case form is longer (`ß` stays `ß`).
+fn change_case(text: &str, up: bool) -> String {
+    text.chars()
+        .map(|c| {
+            let mut mapped: Vec<char> = if up {
+                c.to_uppercase().collect()
+            } else {
+                c.to_lowercase().collect()
+            };
+            match mapped.len() {
+                1 => mapped.pop().unwrap_or(c),
+                _ => c,
+            }
+        })
+        .collect()
 }

@@ -5,6 +5,9 @@ use crate::diag::Span;
 use crate::term::Sym;
 use logos::Logos;
 
+/// Longest integer literal read (reading digits into a big integer takes quadratic time).
+const MAX_DIGITS: usize = 10_000;
+
 /// Raw tokens straight from logos.
 #[derive(Logos, Debug, Clone, PartialEq)]
 #[logos(skip r"[ \t\r\n\x0C]+")]
@@ -12,9 +15,9 @@ enum Raw {
     #[regex(r"%[^\n]*", logos::skip)]
     #[token("/*", block_comment)]
     Comment,
-    #[regex(r"[a-z][a-zA-Z0-9_]*")]
+    #[regex(r"\p{Lowercase}[\p{Alphabetic}\p{N}_]*")]
     Name,
-    #[regex(r"[A-Z_][a-zA-Z0-9_]*")]
+    #[regex(r"[\p{Uppercase}\p{Lt}_][\p{Alphabetic}\p{N}_]*")]
     Var,
     #[regex(r"[0-9][0-9_]*")]
     Int,
@@ -143,6 +146,8 @@ pub enum Tok {
     Functor(Sym),
     Var(Sym),
     Int(i64),
+    /// An integer literal beyond 64 bits.
+    BigInt(num_bigint::BigInt),
     Float(f64),
     Str(String),
     /// A back-quoted string (read as a list of character codes).
@@ -247,14 +252,15 @@ pub fn tokenize_with(
                 Tok::Var(Sym::intern(&format!("_G{anonymous}")))
             }
             Raw::Var => Tok::Var(Sym::intern(slice)),
+            Raw::Int | Raw::Hex | Raw::Octal | Raw::Binary if slice.len() > MAX_DIGITS => {
+                return Err(err(
+                    format!("integer of {} digits is too large", slice.len()),
+                    Some("integers may have at most 10000 digits"),
+                ))
+            }
             Raw::Int => match slice.replace('_', "").parse::<i64>() {
                 Ok(i) => Tok::Int(i),
-                Err(_) => {
-                    return Err(err(
-                        format!("integer `{slice}` is too large"),
-                        Some("integers must fit in 64 bits"),
-                    ))
-                }
+                Err(_) => Tok::BigInt(slice.replace('_', "").parse().unwrap_or_default()),
             },
             Raw::Hex | Raw::Octal | Raw::Binary => {
                 let radix = match raw {
@@ -264,12 +270,10 @@ pub fn tokenize_with(
                 };
                 match i64::from_str_radix(&slice[2..], radix) {
                     Ok(i) => Tok::Int(i),
-                    Err(_) => {
-                        return Err(err(
-                            format!("integer `{slice}` is too large"),
-                            Some("integers must fit in 64 bits"),
-                        ))
-                    }
+                    Err(_) => Tok::BigInt(
+                        num_bigint::BigInt::parse_bytes(slice[2..].as_bytes(), radix)
+                            .unwrap_or_default(),
+                    ),
                 }
             }
             Raw::CharCode => match unescape(&slice[2..], '\'') {
@@ -521,7 +525,14 @@ mod tests {
         let mut n = 0;
         assert!(tokenize("'abc", 0, &mut n).is_err());
         assert!(tokenize("/* abc", 0, &mut n).is_err());
-        assert!(tokenize("99999999999999999999", 0, &mut n).is_err());
+        // logos recurses per character of a token in debug builds: a roomy stack for this one.
+        let long = std::thread::Builder::new()
+            .stack_size(256 << 20)
+            .spawn(|| tokenize(&"9".repeat(10_001), 0, &mut 0).is_err())
+            .map(|h| h.join().unwrap_or(false));
+        assert_eq!(long.ok(), Some(true));
+        let big = tokenize("99999999999999999999", 0, &mut n).map(|t| t.len());
+        assert_eq!(big.ok(), Some(1));
         assert!(tokenize(&"(".repeat(5000), 0, &mut n).is_err());
         assert!(tokenize("0'", 0, &mut n).is_err());
     }

@@ -309,6 +309,7 @@ fn describe(tok: &Tok) -> String {
         Tok::Name(s) | Tok::Functor(s) => format!("`{}`", s.name()),
         Tok::Var(v) => format!("variable `{}`", v.name()),
         Tok::Int(i) => format!("number `{i}`"),
+        Tok::BigInt(i) => format!("number `{i}`"),
         Tok::Float(f) => format!("number `{f}`"),
         Tok::Str(_) | Tok::BackQuoted(_) => "string".into(),
         Tok::Open => "`(`".into(),

@@ -190,8 +190,9 @@ fn negative_number(n: Sym, span: &Span, next: Option<&Item>) -> Option<Located> 
     if o.spans.span.start != span.end {
         return None;
     }
-    let negated = match o.term {
-        Term::Int(i) => Term::Int(i.checked_neg().unwrap_or(i)),
+    let negated = match &o.term {
+        Term::Int(i) => Term::integer(-num_bigint::BigInt::from(*i)),
+        Term::BigInt(b) => Term::integer(-(**b).clone()),
         Term::Float(f) => Term::from(-f.0),
         _ => return None,
     };

@@ -52,8 +52,8 @@ fn functional_notation_lists_and_curly() {
     assert_eq!(read("{a, b}").to_string(), "{a,b}");
     assert_eq!(shown("'hello world'(X)"), "'hello world'(X)");
     assert_eq!(shown("=(X, Y)"), "=(X,Y)");
-    assert_eq!(shown("f(-)"), "f('-')");
-    assert_eq!(shown("[-]"), "['-']");
+    assert_eq!(shown("f(-)"), "f(-)");
+    assert_eq!(shown("[-]"), "[-]");
     assert_eq!(read("\"abc\""), Term::string("abc"));
     assert_eq!(read("`ab`"), Term::list(vec![Term::Int(97), Term::Int(98)]));
     assert_eq!(read("0'a"), Term::Int(97));
@@ -165,6 +165,18 @@ fn gen_term(rng: &mut ChaCha8Rng, depth: u32) -> Term {
         "hello world",
         "é",
         "",
+        ">",
+        "\\",
+        "-->",
+        "ü",
+        "straße",
+        "Über",
+        "---",
+        ".",
+        "/*",
+        "=..",
+        "a.b",
+        "_x",
     ];
     const FUNCTORS: &[&str] = &[
         "f", "g", "-", "+", "*", "^", "**", ",", ";", "->", ":-", "=", "\\+", "is", "mod", "{}",
@@ -172,13 +184,19 @@ fn gen_term(rng: &mut ChaCha8Rng, depth: u32) -> Term {
     ];
     let leaf = depth == 0 || rng.gen_bool(0.3);
     if leaf {
-        return match rng.gen_range(0..6) {
+        return match rng.gen_range(0..7) {
             0 => Term::atom(ATOMS[rng.gen_range(0..ATOMS.len())]),
             1 => Term::Int(rng.gen_range(-1000..1000)),
             2 => Term::from(rng.gen_range(-100.0..100.0f64)),
             3 => Term::var(["X", "Y", "_Z", "Abc"][rng.gen_range(0..4)]),
             4 => Term::string(["", "s", "a\"b", "line\nbreak"][rng.gen_range(0..4)]),
-            _ => Term::Int(i64::MIN + 1),
+            5 => [
+                Term::Int(i64::MIN + 1),
+                Term::integer(num_bigint::BigInt::from(i64::MAX) * 1000),
+                Term::integer(-num_bigint::BigInt::from(i64::MAX) * 7),
+            ][rng.gen_range(0..3)]
+            .clone(),
+            _ => Term::from([0.5, 1e15, 2.5e-7, 1e300, -0.0][rng.gen_range(0..5)]),
         };
     }
     match rng.gen_range(0..3) {

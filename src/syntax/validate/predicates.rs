@@ -157,6 +157,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
             || is_builtin(&k.0, k.1)
             || is_reserved(&k.0, k.1)
             || protected_reason(&k.0).is_some()
+            || crate::kr::native::library::is_known(&k.0, k.1)
     };
     let mut reported: std::collections::BTreeSet<&Key> = Default::default();
     for (k, span) in &u.queries {
@@ -169,7 +170,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
                     k.0, k.1
                 ),
                 span.clone(),
-                "define it in `knowledge` or `beliefs`, insert it, or check the spelling and arity",
+                &undefined_hint(&k.0, k.1, &u),
             );
         }
     }
@@ -328,4 +329,22 @@ pub fn check_prolog_clauses(clauses: &[Located], file: &str) -> Vec<crate::diag:
         }
     }
     diags
+}
+
+/// The hint for an undefined predicate: "did you mean" the closest defined or built-in name.
+fn undefined_hint(name: &str, arity: usize, u: &Uses) -> String {
+    let own = u
+        .knowledge
+        .keys()
+        .chain(u.beliefs.keys())
+        .chain(u.goals.keys())
+        .chain(u.other.keys())
+        .map(|(n, a)| (n.as_str(), *a));
+    match crate::kr::native::library::suggest(name, arity, own) {
+        Some(s) => format!(
+            "did you mean `{s}`? Otherwise define it in `knowledge` or `beliefs`, or insert it"
+        ),
+        None => "define it in `knowledge` or `beliefs`, insert it, or check the spelling and arity"
+            .into(),
+    }
 }
