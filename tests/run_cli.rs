@@ -174,3 +174,55 @@ fn map_and_robots_options_replace_the_defaults() {
     assert!(text(&out.stderr).contains("no-such-map"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A query that never ends by itself (no budget stops it soon) in one agent of two.
+const ENDLESS: &str =
+    "main module { program { if bel(between(1, inf, X), X < 0) then print(X). } }";
+
+#[test]
+fn the_cycle_time_quota_interrupts_a_long_query_and_the_other_agent_goes_on() {
+    let dir = temp_dir("cycle-quota");
+    std::fs::write(dir.join("slow.goal"), ENDLESS).unwrap();
+    std::fs::write(
+        dir.join("busy.goal"),
+        "init module { beliefs { n(0). } }
+         main module { program { if bel(n(N), N < 5, M is N + 1) then delete(n(N)) + insert(n(M)) + print(M). } }",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("two.mas2g"),
+        "agentfiles { \"slow.goal\". \"busy.goal\". } launchpolicy { launch slow:slow. launch busy:busy. }",
+    )
+    .unwrap();
+    let out = goal(
+        &dir,
+        &["two.mas2g", "--cycle-time", "0.2", "--workers", "1"],
+    );
+    let err = text(&out.stderr);
+    assert_eq!(
+        out.status.code(),
+        Some(4),
+        "an agent stopped on an error: {err}"
+    );
+    assert!(err.contains("query interrupted"), "{err}");
+    assert!(err.contains("slow.goal:1"), "located: {err}");
+    assert_eq!(
+        text(&out.stdout),
+        "1\n2\n3\n4\n5\n",
+        "the other agent finished: {err}"
+    );
+}
+
+#[test]
+fn the_run_time_limit_interrupts_a_query_that_is_running() {
+    let dir = temp_dir("time-limit-query");
+    std::fs::write(dir.join("slow.goal"), ENDLESS).unwrap();
+    // No cycle quota: only the run's time limit can stop the query.
+    let out = goal(
+        &dir,
+        &["slow.goal", "--time-limit", "0.5", "--cycle-time", "1000"],
+    );
+    let err = text(&out.stderr);
+    assert_ne!(out.status.code(), Some(0), "{err}");
+    assert!(err.contains("query interrupted"), "{err}");
+}

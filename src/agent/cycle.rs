@@ -116,6 +116,9 @@ pub struct Core {
     /// Wall time one cycle may take, and when the running cycle must end.
     pub cycle_time: Option<Duration>,
     pub deadline: Option<Instant>,
+    /// When the whole run must end (`--time-limit`, a test's `timeout`): no cycle or query
+    /// runs past it.
+    pub run_end: Option<Instant>,
     /// Most facts the belief base may hold, and most messages one cycle may send.
     pub max_beliefs: usize,
     pub max_sent: usize,
@@ -147,6 +150,11 @@ impl Core {
     /// Checks the cycle's time quota: an error when the cycle ran too long.
     pub fn check_deadline(&self) -> Result<(), Fault> {
         if self.deadline.is_some_and(|d| Instant::now() >= d) {
+            if self.run_end.is_some_and(|e| Instant::now() >= e) {
+                return Err(Fault::new(
+                    "the run's time limit was reached during this cycle",
+                ));
+            }
             let t = self.cycle_time.unwrap_or_default();
             return Err(Fault::new(format!(
                 "the cycle took longer than its time quota of {} (--cycle-time)",
@@ -243,6 +251,7 @@ impl Agent {
                 max_steps: config.max_steps,
                 cycle_time: config.cycle_time,
                 deadline: None,
+                run_end: config.limits.deadline,
                 max_beliefs: config.max_beliefs,
                 max_sent: config.max_sent,
                 kr_out: String::new(),
@@ -361,10 +370,16 @@ impl Agent {
         }
         self.cycle += 1;
         self.core.out = CycleOutput::default();
-        self.core.deadline = self
+        let quota_end = self
             .core
             .cycle_time
             .and_then(|t| Instant::now().checked_add(t));
+        self.core.deadline = match (quota_end, self.core.run_end) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+        // Long queries stop at the same deadline (the engine checks it as it goes).
+        self.core.ms.engine.borrow_mut().limits.deadline = self.core.deadline;
         self.core.event(Event::CycleStart { cycle: self.cycle });
         match self.run_cycle(percepts, messages) {
             Ok(None) => {}

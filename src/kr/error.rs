@@ -200,7 +200,7 @@ impl fmt::Display for KrError {
             ),
             KrError::Interrupted { predicate } => write!(
                 f,
-                "query interrupted by the time limit (while calling {predicate})"
+                "query interrupted: the cycle's time quota (--cycle-time) or the run's time limit ran out (while calling {predicate})"
             ),
             KrError::Iso(t) => write!(f, "{}", bounded_text(t)),
             KrError::Uncaught(t) => write!(f, "unhandled exception: {}", bounded_text(t)),

@@ -17,6 +17,7 @@ use crate::agent::{
 use crate::diag::Diagnostic;
 use crate::env::thread::{EnvHandle, EnvInfo, Mode};
 use crate::env::{ActionResult, InitParams};
+use crate::kr::Limits;
 use crate::term::{Style, Term};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -369,6 +370,10 @@ impl<'a> Setup<'a> {
                 percept_types: types.clone(),
                 trace: level,
                 cycle_time: opts.cycle_time,
+                limits: Limits {
+                    deadline: opts.time_limit.and_then(|t| Instant::now().checked_add(t)),
+                    ..Limits::default()
+                },
                 max_beliefs: opts.max_beliefs,
                 max_sent: opts.max_sent,
                 ..AgentConfig::default()
