@@ -156,8 +156,9 @@ fn a_cycle_over_its_time_quota_is_cut() {
     let o = goal(&["run", &fixture("hoarder.goal"), "--cycle-time", "0.001"]);
     let err = text(&o.stderr);
     assert_eq!(o.status.code(), Some(4), "{err}");
+    // Cut inside the query (the engine checks the deadline) or between steps.
     assert!(
-        err.contains("hoarder.goal:5: the cycle took longer than its time quota of 0.001s"),
+        err.contains("hoarder.goal:5:") && err.contains("time quota"),
         "{err}"
     );
 }

@@ -15,9 +15,11 @@ enum Raw {
     #[regex(r"%[^\n]*", logos::skip)]
     #[token("/*", block_comment)]
     Comment,
-    #[regex(r"\p{Lowercase}[\p{Alphabetic}\p{N}_]*")]
+    // The first letter only: `name_rest` takes the others. A Unicode-class repetition in the
+    // pattern would make logos recurse once per character (a stack overflow on long names).
+    #[regex(r"\p{Lowercase}", name_rest)]
     Name,
-    #[regex(r"[\p{Uppercase}\p{Lt}_][\p{Alphabetic}\p{N}_]*")]
+    #[regex(r"[\p{Uppercase}\p{Lt}_]", name_rest)]
     Var,
     #[regex(r"[0-9][0-9_]*")]
     Int,
@@ -60,6 +62,16 @@ enum Raw {
     Cut,
     #[token(";")]
     Semicolon,
+}
+
+/// Consumes the rest of a name or variable: letters, digits and `_`.
+fn name_rest(lex: &mut logos::Lexer<Raw>) {
+    let rest = lex.remainder();
+    let end = rest
+        .char_indices()
+        .find(|&(_, c)| !(c.is_alphabetic() || c.is_numeric() || c == '_'))
+        .map_or(rest.len(), |(i, _)| i);
+    lex.bump(end);
 }
 
 /// Consumes a block comment; fails when it is not closed.
