@@ -142,7 +142,9 @@ impl MentalState {
                         self.believes(&g)?
                     } else {
                         // `not(G)` has no answer exactly when G holds.
-                        self.bel_raw(&Term::compound(wk::NOT, vec![g]), usize::MAX)?.0.is_empty()
+                        self.bel_raw(&Term::compound(wk::NOT, vec![g]), usize::MAX)?
+                            .0
+                            .is_empty()
                     };
                     if !holds {
                         next.push(theta);
