@@ -845,3 +845,42 @@ fn a_cycle_that_did_nothing_leaves_the_agent_waiting_and_the_next_step_is_a_no_o
     let mut p = agent("main module { program [order=linearall] { if true then print(x). } }");
     assert!(!p.step(&[], &[]).waiting);
 }
+
+/// True when the agent's step warned that an `if` condition was cut at 1,000 answers.
+fn warned_cut(out: &goal::agent::CycleOutput) -> bool {
+    out.events.iter().any(|e| {
+        matches!(e, goal::agent::Event::Warning { message }
+            if message.contains("only the first 1000 were considered"))
+    })
+}
+
+#[test]
+fn if_considers_the_first_thousand_answers_of_an_infinite_condition() {
+    let mut a =
+        agent("main module { program { if bel(between(1, inf, X)), bel(X > 5) then print(X). } }");
+    let out = a.step(&[], &[]);
+    let x: u64 = out.printed[0].parse().unwrap();
+    assert!((6..=1000).contains(&x), "{x}");
+    assert!(warned_cut(&out));
+    // Warned once per rule: the next cycles only act.
+    let next = a.step(&[], &[]);
+    assert_eq!(next.printed.len(), 1);
+    assert!(!warned_cut(&next));
+}
+
+#[test]
+fn if_with_a_finite_condition_is_not_cut_and_forall_takes_every_answer() {
+    let mut a = agent(
+        "event module { program {
+            forall bel(between(1, 1500, X)) do insert(n(X)).
+            if bel(between(1, 10, X)) then print(X). } }
+         main module { program { if true then exit-module. } }",
+    );
+    let out = step(&mut a, &["tick"], &[]);
+    assert!(!warned_cut(&out));
+    assert_eq!(
+        beliefs(&a).iter().filter(|b| b.starts_with("n(")).count(),
+        1500
+    );
+    assert_eq!(out.printed.len(), 1);
+}

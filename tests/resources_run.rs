@@ -88,16 +88,53 @@ fn an_agent_with_a_million_deep_term_works_beside_the_others() {
     assert!(r.peak_kib < MAX_PEAK_KIB, "peak RSS {} KiB", r.peak_kib);
 }
 
+/// The warning `goal run` prints when an `if` rule's condition was cut at 1,000 answers.
+const CUT_WARNING: &str = "has 1000 answers or more; only the first 1000 were considered";
+
 #[test]
-fn an_infinite_generator_in_an_if_rule_is_a_located_error_not_a_crash() {
-    let r = goal(&["run", fixture("generator.goal").to_str().unwrap()]);
+fn an_infinite_generator_in_an_if_rule_picks_one_of_its_first_answers_and_runs_on() {
+    let r = goal(&[
+        "run",
+        "--max-cycles",
+        "3",
+        fixture("generator.goal").to_str().unwrap(),
+    ]);
     let all = format!("{}{}", r.stdout, r.stderr);
+    // The agent acts in each of the 3 cycles and is still running at the cycle limit.
+    let printed: Vec<u64> = r
+        .stdout
+        .lines()
+        .filter_map(|l| l.trim().parse().ok())
+        .collect();
+    assert_eq!(printed.len(), 3, "{all}");
+    assert!(printed.iter().all(|x| (6..=1000).contains(x)), "{all}");
+    assert!(all.contains("cycle limit reached"), "{all}");
+    assert!(!r.stderr.contains("budget"), "{all}");
+    // Warned once for the rule, although it was evaluated in every cycle.
+    assert_eq!(r.stderr.matches(CUT_WARNING).count(), 1, "{all}");
     assert!(
         r.stderr
-            .contains("generator.goal:4: query between(1,inf,X): answer budget of 100000"),
+            .contains("generator.goal:4: the condition of rule main:4"),
         "{all}"
     );
     assert!(r.peak_kib < MAX_PEAK_KIB, "peak RSS {} KiB", r.peak_kib);
+}
+
+#[test]
+fn a_length_enumeration_in_an_if_rule_binds_a_length() {
+    let r = goal(&["run", fixture("lengths.goal").to_str().unwrap()]);
+    let all = format!("{}{}", r.stdout, r.stderr);
+    assert!(r.success, "{all}");
+    let n: u64 = r
+        .stdout
+        .lines()
+        .find_map(|l| l.trim().parse().ok())
+        .unwrap_or_else(|| panic!("no length printed: {all}"));
+    assert!((2..1002).contains(&n), "{all}");
+    assert!(
+        r.stderr.contains("lengths.goal:4:") && r.stderr.contains(CUT_WARNING),
+        "{all}"
+    );
 }
 
 #[test]

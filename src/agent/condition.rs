@@ -67,11 +67,28 @@ pub struct CondCtx<'a> {
 
 /// All answers of the condition `lits` extending `base`.
 pub fn eval(cx: &CondCtx<'_>, lits: &[Lit], base: &Subst) -> Result<Vec<Subst>, Fault> {
+    Ok(eval_upto(cx, lits, base, usize::MAX)?.0)
+}
+
+/// The first `cap` answers of the condition `lits` extending `base`, and whether the
+/// evaluation stopped at `cap` (each literal's queries stop there too, so a generator with
+/// infinitely many answers ends cheaply).
+pub fn eval_upto(
+    cx: &CondCtx<'_>,
+    lits: &[Lit],
+    base: &Subst,
+    cap: usize,
+) -> Result<(Vec<Subst>, bool), Fault> {
+    let mut cut = false;
     let mut answers = vec![base.clone()];
     for lit in lits {
         let mut next = AnswerSet::default();
-        for theta in &answers {
-            for a in literal(cx, lit, theta)? {
+        'each: for theta in &answers {
+            for a in literal(cx, lit, theta, cap, &mut cut)? {
+                if next.items.len() >= cap {
+                    cut = true;
+                    break 'each;
+                }
                 next.push(a);
             }
         }
@@ -80,11 +97,18 @@ pub fn eval(cx: &CondCtx<'_>, lits: &[Lit], base: &Subst) -> Result<Vec<Subst>, 
             break;
         }
     }
-    Ok(answers)
+    Ok((answers, cut))
 }
 
-/// The answers of one literal under `theta` (each extends `theta`).
-fn literal(cx: &CondCtx<'_>, lit: &Lit, theta: &Subst) -> Result<Vec<Subst>, Fault> {
+/// The answers of one literal under `theta` (each extends `theta`), at most `cap` per query
+/// (`cut` is set when a query stopped there).
+fn literal(
+    cx: &CondCtx<'_>,
+    lit: &Lit,
+    theta: &Subst,
+    cap: usize,
+    cut: &mut bool,
+) -> Result<Vec<Subst>, Fault> {
     let Lit::Mental {
         negated,
         top_level,
@@ -98,10 +122,17 @@ fn literal(cx: &CondCtx<'_>, lit: &Lit, theta: &Subst) -> Result<Vec<Subst>, Fau
     let q = theta.apply(query);
     let ms = cx.ms;
     let mut raw = AnswerSet::default();
+    // A negated literal is decided by all answers (a filter after the query may drop the
+    // first ones), as for `forall`.
+    let cap = if *negated { usize::MAX } else { cap };
     match (op, about) {
         // Selectors other than this/self query the mental models of other agents.
         (_, Some(others)) => raw.items = super::models::answers(ms, others, *op, &q, theta)?,
-        (MentalOp::Bel, None) => raw.items = ms.bel(&q)?,
+        (MentalOp::Bel, None) => {
+            let (found, stopped) = ms.bel_upto(&q, cap)?;
+            *cut |= stopped;
+            raw.items = found;
+        }
         (MentalOp::Goal | MentalOp::AGoal | MentalOp::GoalA, None) => {
             let single;
             let goals: &[Goal] = match (top_level, cx.only) {
@@ -113,7 +144,9 @@ fn literal(cx: &CondCtx<'_>, lit: &Lit, theta: &Subst) -> Result<Vec<Subst>, Fau
                 (false, None) => ms.attention.current().goals(),
             };
             for g in goals {
-                for a in ms.in_goal(g, &q)? {
+                let (found, stopped) = ms.in_goal_upto(g, &q, cap)?;
+                *cut |= stopped;
+                for a in found {
                     if *op != MentalOp::Goal {
                         let inst = a.apply(&q);
                         if !inst.is_ground() {

@@ -15,6 +15,7 @@ use super::watch::{Observed, Watcher};
 use crate::term::Term;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use std::collections::BTreeSet;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -129,6 +130,8 @@ pub struct Core {
     /// Set when the cycle changed the state or drew on chance without performing a real
     /// action (e.g. a module entered with `focus=select`): the agent is then not waiting.
     pub unsettled: bool,
+    /// Rules (`file:line label`) already warned about for a truncated `if` condition.
+    pub truncated_rules: BTreeSet<String>,
 }
 
 impl Core {
@@ -257,6 +260,7 @@ impl Agent {
                 kr_out: String::new(),
                 watcher: None,
                 unsettled: false,
+                truncated_rules: BTreeSet::new(),
             },
             types: config.percept_types,
             cycle: 0,

@@ -114,8 +114,13 @@ impl MentalState {
     /// segments: each negation is checked per answer of the conjuncts before it, as a cheap
     /// `holds` when it is ground. Answers and their order are those of the whole query.
     pub fn bel(&self, q: &Term) -> Result<Vec<Subst>, Fault> {
+        Ok(self.bel_upto(q, usize::MAX)?.0)
+    }
+
+    /// The first `cap` answers of [`MentalState::bel`], and whether the search stopped at `cap`.
+    pub fn bel_upto(&self, q: &Term, cap: usize) -> Result<(Vec<Subst>, bool), Fault> {
         if self.cannot_hold(q) {
-            return Ok(Vec::new());
+            return Ok((Vec::new(), false));
         }
         let parts = q.conjuncts();
         let negation = |t: &Term| t.is_functor(wk::NOT, 1) || t.is_functor(wk::NAF, 1);
@@ -123,8 +128,9 @@ impl MentalState {
             || !parts.iter().any(|t| negation(t))
             || parts.iter().any(|t| t.is_functor(wk::CUT, 0))
         {
-            return self.bel_raw(q);
+            return self.bel_raw(q, cap);
         }
+        let mut cut = false;
         let mut answers = vec![Subst::new()];
         let mut i = 0;
         while i < parts.len() && !answers.is_empty() {
@@ -136,7 +142,9 @@ impl MentalState {
                         self.believes(&g)?
                     } else {
                         // `not(G)` has no answer exactly when G holds.
-                        self.bel_raw(&Term::compound(wk::NOT, vec![g]))?.is_empty()
+                        self.bel_raw(&Term::compound(wk::NOT, vec![g]), usize::MAX)?
+                            .0
+                            .is_empty()
                     };
                     if !holds {
                         next.push(theta);
@@ -149,8 +157,14 @@ impl MentalState {
                     i += 1;
                 }
                 let seg = Term::conjunction(parts[start..i].iter().map(|t| (*t).clone()).collect());
-                for theta in &answers {
-                    for a in self.bel_raw(&theta.apply(&seg))? {
+                'each: for theta in &answers {
+                    let (found, stopped) = self.bel_raw(&theta.apply(&seg), cap)?;
+                    cut |= stopped;
+                    for a in found {
+                        if next.len() >= cap {
+                            cut = true;
+                            break 'each;
+                        }
                         let mut s = theta.clone();
                         for (v, t) in a.iter() {
                             s.bind(v, t.clone());
@@ -161,13 +175,13 @@ impl MentalState {
             }
             answers = next;
         }
-        Ok(answers)
+        Ok((answers, cut))
     }
 
-    fn bel_raw(&self, q: &Term) -> Result<Vec<Subst>, Fault> {
+    fn bel_raw(&self, q: &Term, cap: usize) -> Result<(Vec<Subst>, bool), Fault> {
         let bases = self.bases();
         let view = View::beliefs(&self.knowledge, &bases);
-        self.run(|e| e.query(&view, q), q)
+        self.run(|e| e.query_upto(&view, q, cap), q)
     }
 
     /// True when `q` has an answer in the belief base.
@@ -182,11 +196,22 @@ impl MentalState {
 
     /// All answers of `q` against one goal's facts plus knowledge.
     pub fn in_goal(&self, g: &Goal, q: &Term) -> Result<Vec<Subst>, Fault> {
+        Ok(self.in_goal_upto(g, q, usize::MAX)?.0)
+    }
+
+    /// The first `cap` answers of [`MentalState::in_goal`], and whether the search stopped at
+    /// `cap`.
+    pub fn in_goal_upto(
+        &self,
+        g: &Goal,
+        q: &Term,
+        cap: usize,
+    ) -> Result<(Vec<Subst>, bool), Fault> {
         if let Some(answers) = goal_facts_only(&self.knowledge, g, q) {
-            return Ok(answers);
+            return Ok((answers, false));
         }
         let view = View::goal(&self.knowledge, &g.facts);
-        self.run(|e| e.query(&view, q), q)
+        self.run(|e| e.query_upto(&view, q, cap), q)
     }
 
     /// True when one goal's facts plus knowledge entail `q`.

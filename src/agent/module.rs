@@ -218,7 +218,7 @@ impl Core {
                         let (b, s) = (f.block, f.subst.clone());
                         let rule = &block.rules[ri];
                         let answers = self
-                            .rule_answers(rule, &s)
+                            .rule_answers(rule, &s, &prog.file)
                             .map_err(|e| self.error(prog, Some((b, ri, rule.line)), e))?;
                         if !answers.is_empty() {
                             stack.push(Frame::Rule(RuleFrame {

@@ -1,7 +1,7 @@
 //! Rule kinds: computing the answers a rule body runs for (`if`: shuffled, one acting answer;
 //! `forall`: all answers computed up front; `listall`: one answer binding the list).
 
-use super::condition::{eval, show_subst, CondCtx};
+use super::condition::{eval_upto, show_subst, CondCtx};
 use super::cycle::Core;
 use super::error::Fault;
 use super::goals::Goal;
@@ -17,9 +17,25 @@ pub struct Answer {
     pub goals: Vec<Goal>,
 }
 
+/// Most answers of its condition an `if` rule considers: the condition's evaluation stops
+/// there (with a warning), so a generator with infinitely many answers (`between(1, inf, X)`,
+/// `length(L, N)`) does not run into the answer budget. `forall` and `listall` take all answers.
+pub const IF_ANSWERS: usize = 1_000;
+
 impl Core {
-    /// The answers the rule's body runs for, in the order to try them (empty: not applicable).
-    pub fn rule_answers(&mut self, rule: &RuleDef, base: &Subst) -> Result<Vec<Answer>, Fault> {
+    /// The answers the rule's body runs for, in the order to try them (empty: not applicable);
+    /// `file` is the program file, named in warnings.
+    pub fn rule_answers(
+        &mut self,
+        rule: &RuleDef,
+        base: &Subst,
+        file: &str,
+    ) -> Result<Vec<Answer>, Fault> {
+        let cap = match rule.kind {
+            RuleKind::If => IF_ANSWERS,
+            RuleKind::Forall | RuleKind::Listall(_) => usize::MAX,
+        };
+        let mut cut = false;
         let mut answers: Vec<Answer> = Vec::new();
         if rule.per_goal {
             // focus=select: evaluate per single goal and remember which goals gave each answer.
@@ -29,9 +45,13 @@ impl Core {
                     ms: &self.ms,
                     only: Some(g),
                 };
-                for s in eval(&cx, &rule.cond, base)? {
+                let (found, stopped) = eval_upto(&cx, &rule.cond, base, cap)?;
+                cut |= stopped;
+                for s in found {
+                    let full = answers.len() >= cap;
                     match answers.iter_mut().find(|a| a.subst == s) {
                         Some(a) => a.goals.push(g.clone()),
+                        None if full => cut = true,
                         None => answers.push(Answer {
                             subst: s,
                             goals: vec![g.clone()],
@@ -44,13 +64,18 @@ impl Core {
                 ms: &self.ms,
                 only: None,
             };
-            answers = eval(&cx, &rule.cond, base)?
+            let (found, stopped) = eval_upto(&cx, &rule.cond, base, cap)?;
+            cut = stopped;
+            answers = found
                 .into_iter()
                 .map(|subst| Answer {
                     subst,
                     goals: Vec::new(),
                 })
                 .collect();
+        }
+        if cut {
+            self.warn_truncated(rule, file);
         }
         if self.level >= TraceLevel::Rules {
             self.event(Event::RuleEvaluated {
@@ -86,6 +111,23 @@ impl Core {
             }
         }
         Ok(answers)
+    }
+
+    /// Warns (once per rule) that an `if` rule considered only the first [`IF_ANSWERS`]
+    /// answers of its condition.
+    fn warn_truncated(&mut self, rule: &RuleDef, file: &str) {
+        let at = format!("{file}:{}", rule.line);
+        if !self.truncated_rules.insert(format!("{at} {}", rule.label)) {
+            return;
+        }
+        self.event(Event::Warning {
+            message: format!(
+                "{at}: the condition of rule {} has {IF_ANSWERS} answers or more; only the \
+                 first {IF_ANSWERS} were considered (the condition may have infinitely many: \
+                 bound its variables or use a finite generator)",
+                rule.label
+            ),
+        });
     }
 
     /// Records that a rule's body runs for an answer.

@@ -147,6 +147,27 @@ impl NativeEngine {
         )
     }
 
+    /// The first `cap` answers of `query` (`usize::MAX`: all, under the answer budget), and
+    /// whether the solver was stopped at `cap` (more answers may exist; they are not sought,
+    /// so an infinite generator ends cheaply).
+    pub fn query_upto(
+        &mut self,
+        view: &View,
+        query: &Term,
+        cap: usize,
+    ) -> KrResult<(Vec<Subst>, bool)> {
+        if let Some(n) = Self::ground_fact_count(view, query) {
+            return Ok((vec![Subst::new(); n.min(cap)], n >= cap));
+        }
+        let mut out = Vec::new();
+        self.solve(view, query, &mut |s| {
+            out.push(s);
+            out.len() < cap
+        })?;
+        let cut = out.len() >= cap;
+        Ok((out, cut))
+    }
+
     /// True when `query` has at least one answer (stops after the first).
     fn first(&mut self, view: &View, query: &Term) -> KrResult<bool> {
         if let Some(n) = Self::ground_fact_count(view, query) {
@@ -169,15 +190,7 @@ impl Default for NativeEngine {
 
 impl Engine for NativeEngine {
     fn query(&mut self, view: &View, query: &Term) -> KrResult<Vec<Subst>> {
-        if let Some(n) = Self::ground_fact_count(view, query) {
-            return Ok(vec![Subst::new(); n]);
-        }
-        let mut out = Vec::new();
-        self.solve(view, query, &mut |s| {
-            out.push(s);
-            true
-        })?;
-        Ok(out)
+        Ok(self.query_upto(view, query, usize::MAX)?.0)
     }
 
     fn query_first(&mut self, view: &View, query: &Term) -> KrResult<Option<Subst>> {
