@@ -312,3 +312,77 @@ fn answers_with_many_unbound_variables_convert_in_linear_time() {
     let l = a[0].get(Sym::intern("L")).unwrap();
     assert_eq!(l.list_items().unwrap().len(), 200_000);
 }
+
+/// The atom budget of the engine `e`'s queries: the error of `query`, if any.
+fn atoms_error(e: &mut NativeEngine, query: &str) -> Option<KrError> {
+    let kn = load(PROGRAM);
+    e.query(&View::beliefs(&kn, &[]), &read(query)).err()
+}
+
+#[test]
+fn queries_creating_atoms_without_end_meet_the_engines_atom_budget() {
+    let small = Limits {
+        max_new_atoms: 1000,
+        ..Limits::default()
+    };
+    for q in [
+        "between(1, inf, X), atom_number(A, X), X < 0",
+        "between(1, inf, X), atom_concat(kr_atoms_concat_, X, A), fail",
+        "between(1, inf, X), format(atom(A), 'kr_atoms_format_~w', [X]), fail",
+        "between(1, inf, X), atomic_list_concat([kr_atoms_list_, X], A), fail",
+    ] {
+        let mut e = NativeEngine::new(0).with_limits(small);
+        match atoms_error(&mut e, q) {
+            Some(KrError::Resource {
+                resource: "atoms",
+                limit: 1000,
+                predicate,
+            }) => assert!(!predicate.is_empty(), "{q}"),
+            other => panic!("{q}: {other:?}"),
+        }
+        // The budget is the engine's, over all its queries: a new atom is refused at once,
+        // an atom that exists already is not.
+        let e2 = atoms_error(&mut e, "atom_concat(kr_atoms_once_, more, A)");
+        assert!(
+            matches!(
+                e2,
+                Some(KrError::Resource {
+                    resource: "atoms",
+                    ..
+                })
+            ),
+            "{e2:?}"
+        );
+        assert_eq!(
+            atoms_error(&mut e, "atom_concat(kr_, known, A), A == kr_known"),
+            None
+        );
+    }
+}
+
+#[test]
+fn atoms_made_again_do_not_count_against_the_budget() {
+    let small = Limits {
+        max_new_atoms: 1000,
+        ..Limits::default()
+    };
+    let mut e = NativeEngine::new(0).with_limits(small);
+    // 600 new atoms, then the same 600 made again and again: never more than the budget.
+    for _ in 0..20 {
+        let q = "between(1, 600, X), atom_concat(kr_atoms_again_, X, A), atom_length(A, _), fail";
+        assert_eq!(atoms_error(&mut e, q), None);
+    }
+    // A second engine has a budget of its own.
+    let mut other = NativeEngine::new(0).with_limits(small);
+    let q = "between(1, 900, X), atom_concat(kr_atoms_other_, X, A), fail";
+    assert_eq!(atoms_error(&mut other, q), None);
+    // The first engine has 400 new atoms left.
+    let q = "between(1, 401, X), atom_concat(kr_atoms_rest_, X, A), fail";
+    assert!(matches!(
+        atoms_error(&mut e, q),
+        Some(KrError::Resource {
+            resource: "atoms",
+            ..
+        })
+    ));
+}

@@ -7,7 +7,8 @@
 use super::machine::{cyclic, Solver};
 use super::store::Cell;
 use crate::kr::error::{KrError, KrResult};
-use crate::term::Term;
+use crate::term::sym::MAX_SYMS;
+use crate::term::{Sym, Term};
 
 /// How many inferences may pass between two checks of memory, output and interruption.
 pub(crate) const CHECK_EVERY: u64 = 1024;
@@ -114,6 +115,26 @@ pub(crate) fn text_len(s: &Solver, bytes: u64, name: &str, arity: usize) -> KrRe
     Ok(())
 }
 
+/// The atom named `text`, made at run time by the built-in `name/arity`: creating a new atom
+/// counts against the engine's atom budget, and the process-wide table is bounded too
+/// (atoms are never freed). Re-using a known atom costs nothing.
+pub(crate) fn new_atom(s: &mut Solver, text: &str, name: &str, arity: usize) -> KrResult<Cell> {
+    if let Some(sym) = Sym::lookup(text) {
+        return Ok(Cell::Atom(sym));
+    }
+    let max = s.cx.limits.max_new_atoms;
+    if *s.cx.new_atoms >= max {
+        return Err(resource("atoms", pi(name, arity), max));
+    }
+    match Sym::try_intern_new(text) {
+        Some((sym, new)) => {
+            *s.cx.new_atoms += u64::from(new);
+            Ok(Cell::Atom(sym))
+        }
+        None => Err(resource("atoms", pi(name, arity), MAX_SYMS as u64)),
+    }
+}
+
 /// Entry check of a built-in that walks the list `c`: counts the walk against the inference
 /// budget and gives `representation_error(cyclic_term)` for a cyclic list (which would never
 /// end). Returns the number of list cells.
@@ -138,7 +159,7 @@ pub(crate) fn cyclic_in(name: &str, arity: usize) -> KrError {
     match cyclic() {
         KrError::Iso(t) => {
             let formal = t.args()[0].clone();
-            KrError::iso(formal, Some((crate::term::Sym::intern(name), arity)))
+            KrError::iso(formal, Some((Sym::intern(name), arity)))
         }
         e => e,
     }

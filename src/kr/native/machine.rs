@@ -148,6 +148,8 @@ pub(crate) struct Ctx<'a> {
     pub rng: &'a mut ChaCha8Rng,
     pub out: &'a mut String,
     pub clock: &'a mut super::Clock,
+    /// How many new atoms the engine's queries have created so far (see `budget::new_atom`).
+    pub new_atoms: &'a mut u64,
 }
 
 /// One running query.

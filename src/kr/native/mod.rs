@@ -42,6 +42,8 @@ pub struct NativeEngine {
     output: String,
     /// What `get_time/1` answers.
     pub clock: Clock,
+    /// New atoms created by this engine's queries, against `limits.max_new_atoms`.
+    new_atoms: u64,
 }
 
 /// The time `get_time/1` answers: wall-clock time, or simulated time set by the runtime
@@ -64,6 +66,7 @@ impl NativeEngine {
             rng: ChaCha8Rng::seed_from_u64(seed),
             output: String::new(),
             clock: Clock::default(),
+            new_atoms: 0,
         }
     }
 
@@ -110,6 +113,7 @@ impl NativeEngine {
                 rng: &mut self.rng,
                 out: &mut self.output,
                 clock: &mut self.clock,
+                new_atoms: &mut self.new_atoms,
             };
             let mut s = Solver::new(m, cx, query, self.occurs_check);
             let mut n = 0;
