@@ -230,6 +230,7 @@ fn resource_name(resource: &str) -> &'static str {
         "answers" => "answer",
         "output" => "output (bytes)",
         "text" => "text length (bytes)",
+        "atoms" => "new atoms (never freed)",
         _ => "resource",
     }
 }

@@ -218,4 +218,14 @@ mod tests {
         assert_eq!(a.name(), "RoomA1");
         assert_ne!(a, Sym::intern("RoomA2"));
     }
+
+    #[test]
+    fn run_time_interning_says_whether_the_name_is_new() {
+        assert_eq!(Sym::lookup("sym_test_fresh_name"), None);
+        let (a, new) = Sym::try_intern_new("sym_test_fresh_name").unwrap();
+        assert!(new);
+        assert_eq!(Sym::try_intern_new("sym_test_fresh_name"), Some((a, false)));
+        assert_eq!(Sym::lookup("sym_test_fresh_name"), Some(a));
+        assert_eq!(Sym::try_intern_new("[]"), Some((well_known::NIL, false)));
+    }
 }
