@@ -23,8 +23,8 @@ pub struct Limits {
     pub max_output: u64,
     /// Maximum length in bytes of an atom or string built at run time.
     pub max_text: u64,
-    /// Maximum number of new atoms (names not yet known to the process) an engine's queries
-    /// may create in all, over its whole life: atoms are never freed.
+    /// Maximum number of distinct atoms an engine's queries may make at run time, over the
+    /// engine's whole life: atoms are never freed.
     pub max_new_atoms: u64,
     /// The query stops with [`KrError::Interrupted`] once this instant has passed.
     pub deadline: Option<Instant>,

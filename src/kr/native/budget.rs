@@ -115,24 +115,27 @@ pub(crate) fn text_len(s: &Solver, bytes: u64, name: &str, arity: usize) -> KrRe
     Ok(())
 }
 
-/// The atom named `text`, made at run time by the built-in `name/arity`: creating a new atom
-/// counts against the engine's atom budget, and the process-wide table is bounded too
-/// (atoms are never freed). Re-using a known atom costs nothing.
+/// The atom named `text`, made at run time by the built-in `name/arity`. Atoms are never
+/// freed, so each distinct atom the engine's queries make counts once against its atom
+/// budget (making it again costs nothing), and the process-wide table is bounded too.
 pub(crate) fn new_atom(s: &mut Solver, text: &str, name: &str, arity: usize) -> KrResult<Cell> {
-    if let Some(sym) = Sym::lookup(text) {
+    let known = Sym::lookup(text);
+    if let Some(sym) = known.filter(|sym| s.cx.made_atoms.contains(sym)) {
         return Ok(Cell::Atom(sym));
     }
     let max = s.cx.limits.max_new_atoms;
-    if *s.cx.new_atoms >= max {
+    if s.cx.made_atoms.len() as u64 >= max {
         return Err(resource("atoms", pi(name, arity), max));
     }
-    match Sym::try_intern_new(text) {
-        Some((sym, new)) => {
-            *s.cx.new_atoms += u64::from(new);
-            Ok(Cell::Atom(sym))
-        }
-        None => Err(resource("atoms", pi(name, arity), MAX_SYMS as u64)),
-    }
+    let sym = match known {
+        Some(sym) => sym,
+        None => match Sym::try_intern_new(text) {
+            Some((sym, _)) => sym,
+            None => return Err(resource("atoms", pi(name, arity), MAX_SYMS as u64)),
+        },
+    };
+    s.cx.made_atoms.insert(sym);
+    Ok(Cell::Atom(sym))
 }
 
 /// Entry check of a built-in that walks the list `c`: counts the walk against the inference
