@@ -312,3 +312,75 @@ fn answers_with_many_unbound_variables_convert_in_linear_time() {
     let l = a[0].get(Sym::intern("L")).unwrap();
     assert_eq!(l.list_items().unwrap().len(), 200_000);
 }
+
+/// The atom budget of the engine `e`'s queries: the error of `query`, if any.
+fn atoms_error(e: &mut NativeEngine, query: &str) -> Option<KrError> {
+    let kn = load(PROGRAM);
+    e.query(&View::beliefs(&kn, &[]), &read(query)).err()
+}
+
+/// True when `r` is the atom budget's error.
+fn is_atoms_error(r: &Option<KrError>) -> bool {
+    matches!(
+        r,
+        Some(KrError::Resource {
+            resource: "atoms",
+            ..
+        })
+    )
+}
+
+#[test]
+fn queries_creating_atoms_without_end_meet_the_engines_atom_budget() {
+    let small = Limits {
+        max_new_atoms: 1000,
+        ..Limits::default()
+    };
+    for q in [
+        "between(1, inf, X), atom_number(A, X), X < 0",
+        "between(1, inf, X), atom_concat(kr_atoms_concat_, X, A), fail",
+        "between(1, inf, X), format(atom(A), 'kr_atoms_format_~w', [X]), fail",
+        "between(1, inf, X), atomic_list_concat([kr_atoms_list_, X], A), fail",
+    ] {
+        let mut e = NativeEngine::new(0).with_limits(small);
+        match atoms_error(&mut e, q) {
+            Some(KrError::Resource {
+                resource: "atoms",
+                limit: 1000,
+                predicate,
+            }) => assert!(!predicate.is_empty(), "{q}"),
+            other => panic!("{q}: {other:?}"),
+        }
+        // The budget is the engine's, over all its queries: a new atom is refused at once;
+        // queries that make no atom still run.
+        let again = atoms_error(&mut e, "atom_concat(kr_atoms_once_, more, A)");
+        assert!(is_atoms_error(&again), "{again:?}");
+        assert_eq!(atoms_error(&mut e, "X = 1"), None);
+    }
+}
+
+#[test]
+fn atoms_made_again_do_not_count_against_the_budget() {
+    let small = Limits {
+        max_new_atoms: 1000,
+        ..Limits::default()
+    };
+    let mut e = NativeEngine::new(0).with_limits(small);
+    // 600 atoms, then the same 600 made again and again: never more than the budget.
+    let same = "between(1, 600, X), atom_concat(kr_atoms_again_, X, A), atom_length(A, _), fail";
+    for _ in 0..20 {
+        assert_eq!(atoms_error(&mut e, same), None);
+    }
+    // A second engine has a budget of its own.
+    let mut other = NativeEngine::new(0).with_limits(small);
+    let q = "between(1, 900, X), atom_concat(kr_atoms_other_, X, A), fail";
+    assert_eq!(atoms_error(&mut other, q), None);
+    // The first engine has 400 atoms left.
+    let q = "between(1, 401, X), atom_concat(kr_atoms_rest_, X, A), fail";
+    assert!(is_atoms_error(&atoms_error(&mut e, q)));
+    // Atoms it made before can still be made. Atoms that exist but that it never made count
+    // too, so that its count never depends on what other engines made.
+    assert_eq!(atoms_error(&mut e, same), None);
+    let q = "atom_concat(kr_atoms_other_, 1, A)";
+    assert!(is_atoms_error(&atoms_error(&mut e, q)));
+}

@@ -75,6 +75,25 @@ fn a_runaway_agent_stops_with_a_located_error_and_the_others_finish() {
 }
 
 #[test]
+fn an_agent_making_new_atoms_every_cycle_meets_its_atom_budget_and_the_others_finish() {
+    let mas = fixture("atoms.mas2g");
+    let r = goal(&["run", "--workers", "2", mas.to_str().unwrap()]);
+    let all = format!("{}{}", r.stdout, r.stderr);
+    assert!(r.stdout.contains("counted to 30"), "{all}");
+    // Seven cycles remaking the same 200000 atoms: 1400000 atoms made, 200000 of them new.
+    assert!(r.stdout.contains("reused 7 times"), "{all}");
+    assert!(!r.stdout.contains("never here"), "{all}");
+    assert!(
+        r.stderr.contains(
+            "atoms.goal:17: query round(N),fresh(N),M is N+1: new atoms (never freed) budget of 1000000 exceeded (while calling atom_concat/3)"
+        ),
+        "{all}"
+    );
+    assert!(!r.stderr.contains("agent reuse stopped"), "{all}");
+    assert!(r.peak_kib < MAX_PEAK_KIB, "peak RSS {} KiB", r.peak_kib);
+}
+
+#[test]
 fn an_agent_with_a_million_deep_term_works_beside_the_others() {
     let mas = fixture("deep.mas2g");
     let r = goal(&["run", "--workers", "2", mas.to_str().unwrap()]);

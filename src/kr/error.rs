@@ -23,6 +23,9 @@ pub struct Limits {
     pub max_output: u64,
     /// Maximum length in bytes of an atom or string built at run time.
     pub max_text: u64,
+    /// Maximum number of distinct atoms an engine's queries may make at run time, over the
+    /// engine's whole life: atoms are never freed.
+    pub max_new_atoms: u64,
     /// The query stops with [`KrError::Interrupted`] once this instant has passed.
     pub deadline: Option<Instant>,
     /// The query stops with [`KrError::Interrupted`] once this flag is set.
@@ -38,6 +41,7 @@ impl Default for Limits {
             max_answers: 100_000,
             max_output: 1 << 20,
             max_text: 16 << 20,
+            max_new_atoms: 1_000_000,
             deadline: None,
             cancel: Interrupt::default(),
         }
@@ -226,6 +230,7 @@ fn resource_name(resource: &str) -> &'static str {
         "answers" => "answer",
         "output" => "output (bytes)",
         "text" => "text length (bytes)",
+        "atoms" => "new atoms (never freed)",
         _ => "resource",
     }
 }

@@ -110,11 +110,25 @@ fn interner() -> &'static RwLock<Interner> {
     })
 }
 
+/// The most names the table holds before [`Sym::try_intern_new`] refuses new ones (a
+/// backstop over the per-agent budgets: about 90 bytes each, so some 700 MB at most).
+pub const MAX_SYMS: usize = 8_000_000;
+
+/// Adds `name`, not yet interned, to the table.
+fn add(guard: &mut Interner, name: &str) -> Sym {
+    let leaked: &'static str = Box::leak(name.to_owned().into_boxed_str());
+    let sym = Sym(guard.names.len() as u32);
+    guard.names.push(leaked);
+    guard.ids.insert(leaked, sym);
+    sym
+}
+
 impl Sym {
     /// Interns `name`, returning the existing symbol when it is already known.
     ///
-    /// Interned names live for the whole process (like atoms in most Prolog systems without
-    /// atom garbage collection); programs create a bounded set of names in practice.
+    /// Interned names live for the whole process (like atoms in Prolog systems without atom
+    /// garbage collection): names from program text use this; names made by running queries
+    /// go through [`Sym::try_intern_new`], which is bounded.
     pub fn intern(name: &str) -> Sym {
         if let Some(sym) = interner()
             .read()
@@ -128,11 +142,34 @@ impl Sym {
         if let Some(sym) = guard.ids.get(name) {
             return *sym;
         }
-        let leaked: &'static str = Box::leak(name.to_owned().into_boxed_str());
-        let sym = Sym(guard.names.len() as u32);
-        guard.names.push(leaked);
-        guard.ids.insert(leaked, sym);
-        sym
+        add(&mut guard, name)
+    }
+
+    /// The symbol named `name` when it is already interned.
+    pub fn lookup(name: &str) -> Option<Sym> {
+        interner()
+            .read()
+            .unwrap_or_else(|e| e.into_inner())
+            .ids
+            .get(name)
+            .copied()
+    }
+
+    /// Interns `name` for a name made at run time: the symbol and whether it was new, or
+    /// `None` when the name is new and the table already holds [`MAX_SYMS`] names (interned
+    /// names are never freed, so the table is bounded for names made by running programs).
+    pub fn try_intern_new(name: &str) -> Option<(Sym, bool)> {
+        if let Some(sym) = Sym::lookup(name) {
+            return Some((sym, false));
+        }
+        let mut guard = interner().write().unwrap_or_else(|e| e.into_inner());
+        if let Some(sym) = guard.ids.get(name) {
+            return Some((*sym, false));
+        }
+        if guard.names.len() >= MAX_SYMS {
+            return None;
+        }
+        Some((add(&mut guard, name), true))
     }
 
     /// The text of this symbol.
@@ -180,5 +217,15 @@ mod tests {
         assert_eq!(a, Sym::intern("RoomA1"));
         assert_eq!(a.name(), "RoomA1");
         assert_ne!(a, Sym::intern("RoomA2"));
+    }
+
+    #[test]
+    fn run_time_interning_says_whether_the_name_is_new() {
+        assert_eq!(Sym::lookup("sym_test_fresh_name"), None);
+        let (a, new) = Sym::try_intern_new("sym_test_fresh_name").unwrap();
+        assert!(new);
+        assert_eq!(Sym::try_intern_new("sym_test_fresh_name"), Some((a, false)));
+        assert_eq!(Sym::lookup("sym_test_fresh_name"), Some(a));
+        assert_eq!(Sym::try_intern_new("[]"), Some((well_known::NIL, false)));
     }
 }

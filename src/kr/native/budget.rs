@@ -7,7 +7,8 @@
 use super::machine::{cyclic, Solver};
 use super::store::Cell;
 use crate::kr::error::{KrError, KrResult};
-use crate::term::Term;
+use crate::term::sym::MAX_SYMS;
+use crate::term::{Sym, Term};
 
 /// How many inferences may pass between two checks of memory, output and interruption.
 pub(crate) const CHECK_EVERY: u64 = 1024;
@@ -114,6 +115,29 @@ pub(crate) fn text_len(s: &Solver, bytes: u64, name: &str, arity: usize) -> KrRe
     Ok(())
 }
 
+/// The atom named `text`, made at run time by the built-in `name/arity`. Atoms are never
+/// freed, so each distinct atom the engine's queries make counts once against its atom
+/// budget (making it again costs nothing), and the process-wide table is bounded too.
+pub(crate) fn new_atom(s: &mut Solver, text: &str, name: &str, arity: usize) -> KrResult<Cell> {
+    let known = Sym::lookup(text);
+    if let Some(sym) = known.filter(|sym| s.cx.made_atoms.contains(sym)) {
+        return Ok(Cell::Atom(sym));
+    }
+    let max = s.cx.limits.max_new_atoms;
+    if s.cx.made_atoms.len() as u64 >= max {
+        return Err(resource("atoms", pi(name, arity), max));
+    }
+    let sym = match known {
+        Some(sym) => sym,
+        None => match Sym::try_intern_new(text) {
+            Some((sym, _)) => sym,
+            None => return Err(resource("atoms", pi(name, arity), MAX_SYMS as u64)),
+        },
+    };
+    s.cx.made_atoms.insert(sym);
+    Ok(Cell::Atom(sym))
+}
+
 /// Entry check of a built-in that walks the list `c`: counts the walk against the inference
 /// budget and gives `representation_error(cyclic_term)` for a cyclic list (which would never
 /// end). Returns the number of list cells.
@@ -138,7 +162,7 @@ pub(crate) fn cyclic_in(name: &str, arity: usize) -> KrError {
     match cyclic() {
         KrError::Iso(t) => {
             let formal = t.args()[0].clone();
-            KrError::iso(formal, Some((crate::term::Sym::intern(name), arity)))
+            KrError::iso(formal, Some((Sym::intern(name), arity)))
         }
         e => e,
     }

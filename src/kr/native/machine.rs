@@ -10,6 +10,7 @@ use crate::kr::factbase::{FactBase, Scan};
 use crate::kr::knowledge::{Knowledge, Pred, PredRef};
 use crate::term::{Subst, Sym, Term};
 use rand_chacha::ChaCha8Rng;
+use std::collections::HashSet;
 
 pub(crate) const NONE: u32 = u32::MAX;
 
@@ -148,6 +149,8 @@ pub(crate) struct Ctx<'a> {
     pub rng: &'a mut ChaCha8Rng,
     pub out: &'a mut String,
     pub clock: &'a mut super::Clock,
+    /// The atoms the engine's queries have made at run time so far (see `budget::new_atom`).
+    pub made_atoms: &'a mut HashSet<Sym>,
 }
 
 /// One running query.

@@ -20,11 +20,12 @@ pub(crate) mod text;
 
 use super::error::{KrResult, Limits};
 use super::{Engine, View};
-use crate::term::{Subst, Term};
+use crate::term::{Subst, Sym, Term};
 use machine::{Ctx, Machine, Solver};
 use rand_chacha::rand_core::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::cell::RefCell;
+use std::collections::HashSet;
 
 thread_local! {
     /// The solver buffers, reused by every query on this thread (agents stay small).
@@ -42,6 +43,10 @@ pub struct NativeEngine {
     output: String,
     /// What `get_time/1` answers.
     pub clock: Clock,
+    /// The distinct atoms this engine's queries made at run time, against
+    /// `limits.max_new_atoms` (a set of this engine's own, so that the count never depends on
+    /// what other agents or earlier runs in the process made).
+    made_atoms: HashSet<Sym>,
 }
 
 /// The time `get_time/1` answers: wall-clock time, or simulated time set by the runtime
@@ -64,6 +69,7 @@ impl NativeEngine {
             rng: ChaCha8Rng::seed_from_u64(seed),
             output: String::new(),
             clock: Clock::default(),
+            made_atoms: HashSet::new(),
         }
     }
 
@@ -110,6 +116,7 @@ impl NativeEngine {
                 rng: &mut self.rng,
                 out: &mut self.output,
                 clock: &mut self.clock,
+                made_atoms: &mut self.made_atoms,
             };
             let mut s = Solver::new(m, cx, query, self.occurs_check);
             let mut n = 0;

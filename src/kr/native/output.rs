@@ -2,6 +2,7 @@
 //! buffer; the agent decides where that text goes. `format/3` with `atom(A)`, `string(S)`,
 //! `codes(C)` or `chars(C)` writes to a term instead.
 
+use super::budget::new_atom;
 use super::builtins::{inst, type_error, Flow, B};
 use super::machine::Solver;
 use super::store::{Cell, VarNames};
@@ -374,7 +375,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
                 if let Cell::Ptr(q) = s.ad(p, 0) {
                     if let Some((k, 1)) = s.m.st.heap[q as usize].fun() {
                         let v = match k.name() {
-                            "atom" => Some(Cell::Atom(Sym::intern(&out))),
+                            "atom" => Some(new_atom(s, &out, "format", 3)?),
                             "string" => Some(s.m.st.new_str(Arc::from(out.as_str()))),
                             "codes" => {
                                 let cs: Vec<Cell> =
@@ -382,10 +383,10 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
                                 Some(s.m.st.new_list(&cs, Cell::Atom(wk::NIL)))
                             }
                             "chars" => {
-                                let cs: Vec<Cell> = out
+                                let cs = out
                                     .chars()
-                                    .map(|c| Cell::Atom(Sym::intern(&c.to_string())))
-                                    .collect();
+                                    .map(|c| new_atom(s, &c.to_string(), "format", 3))
+                                    .collect::<KrResult<Vec<Cell>>>()?;
                                 Some(s.m.st.new_list(&cs, Cell::Atom(wk::NIL)))
                             }
                             _ => None,

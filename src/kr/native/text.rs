@@ -1,6 +1,7 @@
 //! Atoms and strings: conversion between atoms, strings, numbers, code and char lists;
 //! concatenation and splitting (nondeterministic modes enumerate through `member/2`).
 
+use super::budget::new_atom;
 use super::builtins::{goal, inst, type_error, Flow, B};
 use super::machine::Solver;
 use super::store::{Cell, Store};
@@ -139,21 +140,17 @@ fn codes(s: &mut Solver, text: &str) -> Cell {
     s.m.st.new_list(&items, Cell::Atom(wk::NIL))
 }
 
-fn chars(s: &mut Solver, text: &str) -> Cell {
+fn chars(s: &mut Solver, text: &str, name: &str) -> KrResult<Cell> {
     let mut buf = [0u8; 4];
-    let items: Vec<Cell> = text
+    let items = text
         .chars()
-        .map(|c| Cell::Atom(Sym::intern(c.encode_utf8(&mut buf))))
-        .collect();
-    s.m.st.new_list(&items, Cell::Atom(wk::NIL))
+        .map(|c| new_atom(s, c.encode_utf8(&mut buf), name, 2))
+        .collect::<KrResult<Vec<Cell>>>()?;
+    Ok(s.m.st.new_list(&items, Cell::Atom(wk::NIL)))
 }
 
 fn string(s: &mut Solver, text: &str) -> Cell {
     s.m.st.new_str(Arc::from(text))
-}
-
-fn atom(text: &str) -> Cell {
-    Cell::Atom(Sym::intern(text))
 }
 
 fn unify_flow(s: &mut Solver, a: Cell, b: Cell) -> Flow {
@@ -192,10 +189,11 @@ enum Kind {
     Str,
 }
 
-fn make(s: &mut Solver, k: Kind, text: &str) -> Cell {
+/// The result `text` of the built-in `name/arity` as kind `k`.
+fn make(s: &mut Solver, k: Kind, text: &str, name: &str, arity: usize) -> KrResult<Cell> {
     match k {
-        Kind::Atom => atom(text),
-        Kind::Str => string(s, text),
+        Kind::Atom => new_atom(s, text, name, arity),
+        Kind::Str => Ok(string(s, text)),
     }
 }
 
@@ -204,7 +202,7 @@ fn concat(s: &mut Solver, p: u32, k: Kind, name: &str) -> KrResult<Flow> {
         let a = need_text(s, p, 0, name, 3)?;
         let b = need_text(s, p, 1, name, 3)?;
         super::budget::text_len(s, (a.len() + b.len()) as u64, name, 3)?;
-        let r = make(s, k, &(a + &b));
+        let r = make(s, k, &(a + &b), name, 3)?;
         let z = s.a(p, 2);
         return Ok(unify_flow(s, z, r));
     }
@@ -218,7 +216,7 @@ fn concat(s: &mut Solver, p: u32, k: Kind, name: &str) -> KrResult<Flow> {
         .chain(std::iter::once((whole.len(), ' ')))
     {
         let (x, y) = whole.split_at(i);
-        alts.push(vec![make(s, k, x), make(s, k, y)]);
+        alts.push(vec![make(s, k, x, name, 3)?, make(s, k, y, name, 3)?]);
     }
     let args = [s.a(p, 0), s.a(p, 1)];
     Ok(enumerate(s, &args, alts))
@@ -265,7 +263,7 @@ fn sub_text(s: &mut Solver, p: u32, k: Kind, name: &str) -> KrResult<Flow> {
                 continue;
             }
             let text: String = chars[b..b + l].iter().collect();
-            let t = make(s, k, &text);
+            let t = make(s, k, &text, name, 5)?;
             alts.push(vec![
                 Cell::Int(b as i64),
                 Cell::Int(l as i64),
@@ -305,7 +303,11 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
             };
             if !is_var(s, p, 0) {
                 let t = need_text(s, p, 0, name, 2)?;
-                let l = if as_codes { codes(s, &t) } else { chars(s, &t) };
+                let l = if as_codes {
+                    codes(s, &t)
+                } else {
+                    chars(s, &t, name)?
+                };
                 let y = s.a(p, 1);
                 unify_flow(s, y, l)
             } else {
@@ -314,7 +316,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
                     return Err(list_text_error(s, l, as_codes, name));
                 };
                 let v = match kind {
-                    0 => atom(&t),
+                    0 => new_atom(s, &t, name, 2)?,
                     1 => string(s, &t),
                     _ => number_from(s, &t, name, 2)?,
                 };
@@ -340,7 +342,8 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
                         2,
                     ));
                 };
-                unify_flow(s, x, atom(&ch.to_string()))
+                let c = new_atom(s, &ch.to_string(), "char_code", 2)?;
+                unify_flow(s, x, c)
             }
             (Cell::Ref(_), Cell::Ref(_)) => return Err(inst("char_code", 2)),
             (x, _) => return Err(type_error(s, "character", x, "char_code", 2)),
@@ -396,7 +399,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
                     n @ (Cell::Int(_) | Cell::Flt(_)) => {
                         let t = text_of(s, n).unwrap_or_default();
                         let v = if b == B::AtomNumber {
-                            atom(&t)
+                            new_atom(s, &t, name, 2)?
                         } else {
                             string(s, &t)
                         };
@@ -421,7 +424,8 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
             } else {
                 let t = need_text(s, p, si, name, 2)?;
                 let x = s.a(p, ai);
-                unify_flow(s, x, atom(&t))
+                let a = new_atom(s, &t, name, 2)?;
+                unify_flow(s, x, a)
             }
         }
         B::UpcaseAtom | B::DowncaseAtom | B::StringLower | B::StringUpper => {
@@ -433,7 +437,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
             };
             let t = need_text(s, p, 0, name, 2)?;
             let r = change_case(&t, up);
-            let v = make(s, k, &r);
+            let v = make(s, k, &r, name, 2)?;
             let y = s.a(p, 1);
             unify_flow(s, y, v)
         }
@@ -496,12 +500,15 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
                 }
             }
             if complete {
-                let v = atom(&parts.join(&sep));
+                let v = new_atom(s, &parts.join(&sep), "atomic_list_concat", arity as usize)?;
                 let y = s.a(p, out_i);
                 unify_flow(s, y, v)
             } else if arity == 3 && !sep.is_empty() && !is_var(s, p, 2) {
                 let whole = need_text(s, p, 2, "atomic_list_concat", 3)?;
-                let cells: Vec<Cell> = whole.split(sep.as_str()).map(atom).collect();
+                let cells = whole
+                    .split(sep.as_str())
+                    .map(|t| new_atom(s, t, "atomic_list_concat", 3))
+                    .collect::<KrResult<Vec<Cell>>>()?;
                 let l = s.m.st.new_list(&cells, Cell::Atom(wk::NIL));
                 let x = s.a(p, 0);
                 unify_flow(s, x, l)
@@ -517,7 +524,7 @@ pub(crate) fn det(s: &mut Solver, b: B, p: u32, arity: u32) -> KrResult<Option<F
             };
             if !is_var(s, p, 0) {
                 let t = super::output::text(s, s.a(p, 0), Style::WRITEQ)?;
-                let v = make(s, k, &t);
+                let v = make(s, k, &t, name, 2)?;
                 let y = s.a(p, 1);
                 unify_flow(s, y, v)
             } else {
