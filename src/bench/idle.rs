@@ -22,7 +22,7 @@ pub fn run(params: &Params, workers: usize) -> Result<Report, String> {
         .iter()
         .map(|name| {
             let config = AgentConfig {
-                seed: crate::mas::run::agent_seed(0, name),
+                seed: crate::mas::launch::agent_seed(0, name),
                 directory: Some(directory.clone()),
                 trace: TraceLevel::Off,
                 ..AgentConfig::default()

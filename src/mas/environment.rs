@@ -6,11 +6,16 @@
 //! built-in BW4T, any containing `blocksworld` the built-in blocks world; `"bw4t"` and
 //! `"blocksworld"` name them directly. [`select_environment`] is the one place that decides.
 
+use super::observer::Observer;
+use super::options::RunOptions;
 use super::system::Problem;
+use crate::agent::{PerceptType, PerceptTypes};
 use crate::blocksworld::BlocksWorld;
 use crate::bw4t::Bw4t;
 use crate::diag::Diagnostic;
+use crate::env::thread::EnvInfo;
 use crate::env::{Environment, InitParams};
+use crate::term::{Style, Term};
 
 /// A built-in environment.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -202,6 +207,74 @@ pub fn select_environment(reference: &str, params: &InitParams) -> Result<EnvSet
         params,
         warnings,
     })
+}
+
+/// The percept types the environment declares, in the agents' form.
+pub fn percept_types(info: &EnvInfo) -> PerceptTypes {
+    use crate::env::PerceptType as E;
+    PerceptTypes::new(info.declarations.iter().map(|d| {
+        let k = match d.kind {
+            E::Once => PerceptType::Once,
+            E::OnChange => PerceptType::OnChange,
+            E::OnChangeWithNegation => PerceptType::OnChangeNeg,
+            E::Always => PerceptType::Always,
+        };
+        ((d.name.clone(), d.arity), k)
+    }))
+}
+
+fn text_of(t: &Term) -> String {
+    t.to_text(Style::WRITE)
+}
+
+/// The environment's parameters with the run options applied; unknown keys are dropped with
+/// a warning (the BW4T of the Java distribution ignores them too).
+pub fn env_params(
+    setup: &EnvSetup,
+    opts: &RunOptions,
+    obs: &mut dyn Observer,
+) -> (InitParams, u64, String) {
+    let mut p = InitParams::new();
+    let kind = setup.kind;
+    for (k, v) in &setup.params {
+        if kind.param_names().contains(&k.as_str()) {
+            p.insert(k.clone(), v.clone());
+        } else {
+            obs.warning(&format!(
+                "init parameter `{k}` is not used by {}; ignored",
+                kind.name()
+            ));
+        }
+    }
+    if kind != Builtin::Bw4t {
+        if opts.map.is_some() || opts.robots.is_some() {
+            obs.warning(&format!(
+                "--map and --robots are for bw4t, not {}; ignored",
+                kind.name()
+            ));
+        }
+        let seed = opts.seed.unwrap_or(0);
+        return (p, seed, String::new());
+    }
+    if let Some(s) = opts.seed {
+        p.insert("seed".into(), Term::Int(s as i64));
+    }
+    let seed = match p.get("seed") {
+        Some(Term::Int(i)) => *i as u64,
+        _ => 0,
+    };
+    p.insert("seed".into(), Term::Int(seed as i64));
+    if let Some(m) = &opts.map {
+        p.insert("map".into(), Term::string(m));
+    }
+    if let Some(r) = opts.robots {
+        p.insert("robots".into(), Term::Int(r as i64));
+    }
+    let map = p
+        .get("map")
+        .map(text_of)
+        .unwrap_or_else(|| crate::bw4t::map::DEFAULT_MAP.to_string());
+    (p, seed, map)
 }
 
 #[cfg(test)]

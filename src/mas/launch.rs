@@ -1,4 +1,4 @@
-//! Launch rules (goal-language.md §9.2): which agents to create, with which names, connected to
+//! Launch rules: which agents to create, with which names, connected to
 //! which entity. Pure bookkeeping: no programs, no threads.
 
 use crate::env::EntityInfo;
@@ -121,4 +121,18 @@ impl Launcher {
         self.taken.insert(name.clone());
         name
     }
+}
+
+/// A per-agent seed from the run seed and the agent's name (FNV-1a, then splitmix64).
+pub fn agent_seed(seed: u64, name: &str) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in name.bytes() {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    let mut z = seed ^ h;
+    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
 }

@@ -5,7 +5,7 @@
 //! [`run::run`] it with [`run::RunOptions`]; the result is a [`stats::RunSummary`]. Traces are
 //! JSON lines ([`trace::TraceWriter`], format in `docs/trace-format.md`).
 //!
-//! Lock-step rounds (architecture.md, "Threads and determinism"): the environment runs on its
+//! Lock-step rounds (ARCHITECTURE.md, "How a run flows"): the environment runs on its
 //! own thread ([`crate::env::thread`]), agents are owned by the workers of a
 //! [`scheduler::Pool`] (worker 0 is the scheduler thread), environment actions are applied in
 //! agent-name order and messages delivered at the next round in (sender, sequence) order, so
@@ -16,8 +16,9 @@
 //!   do not yet cycle freely against a free-running environment.
 //! * Entities that are freed or deleted during a run (BW4T never does this today), so agents
 //!   are never stopped or relaunched by the environment.
-//! * Environments other than the built-in `bw4t`; `language=` of agent files is ignored.
-//! * Mental models (§8.4) and CLAMR sessions (conversation tracking).
+//! * Environments other than the built-in `bw4t` and `blocksworld`; `language=` of agent files
+//!   is ignored.
+//! * CLAMR sessions (conversation tracking).
 
 pub mod default_team;
 pub mod envcheck;
@@ -25,6 +26,8 @@ pub mod environment;
 pub mod launch;
 pub mod memory;
 pub mod modular;
+pub mod observer;
+pub mod options;
 pub mod routing;
 pub mod run;
 pub mod scheduler;

@@ -3,162 +3,31 @@
 //! environment in agent-name order and messages are delivered for the next round in (sender,
 //! sequence) order. The result depends only on the programs, the map and the seed.
 
-use super::environment::EnvSetup;
-use super::launch::{Launch, Launcher};
+use super::environment::{env_params, percept_types};
+use super::launch::{agent_seed, Launch, Launcher};
 use super::routing::Router;
 use super::scheduler::{Job, Pool};
 use super::stats::{AgentStats, Deliveries, EndReason, RunSummary};
 use super::system::{MasSystem, Problem};
 use super::trace::{AgentInfo, TraceWriter};
+// The run's options and observer are part of its interface.
+pub use super::observer::{Observer, Progress, Quiet};
+pub use super::options::{RunOptions, DEFAULT_MAX_MAILBOX, DEFAULT_MAX_MEMORY, TICK_SECONDS};
 use crate::agent::{
-    Agent, AgentConfig, Directory, Event, Message, PerceptType, PerceptTypes, Program,
-    RuntimeError, StopReason, TraceLevel,
+    Agent, AgentConfig, Directory, Event, Message, RuntimeError, StopReason, TraceLevel,
 };
 use crate::diag::Diagnostic;
-use crate::env::thread::{EnvHandle, EnvInfo, Mode};
-use crate::env::{ActionResult, InitParams};
+use crate::env::thread::{EnvHandle, Mode};
+use crate::env::ActionResult;
 use crate::kr::Limits;
-use crate::term::{Style, Term};
+use crate::term::Term;
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::Ordering;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-/// Simulated seconds per tick: what `get_time/1` advances by per tick in lock-step runs (the
-/// BW4T server's default step delay), so runs are reproducible.
-pub const TICK_SECONDS: f64 = 0.01;
-
-/// How to run a system.
-#[derive(Clone, Debug)]
-pub struct RunOptions {
-    /// The run seed (overrides the MAS file's `seed`); default: the file's, else 0.
-    pub seed: Option<u64>,
-    /// A map (built-in name or file) replacing the MAS file's.
-    pub map: Option<String>,
-    /// Number of robots in the environment.
-    pub robots: Option<usize>,
-    /// Stop after this many ticks (rounds without an environment).
-    pub max_ticks: u64,
-    /// Worker threads for the agents.
-    pub workers: usize,
-    /// Do not step agents that have nothing new (the trace is the same either way).
-    pub skip_idle: bool,
-    /// Pace the rounds to this many per second (for watching); `None`: as fast as possible.
-    pub realtime: Option<f64>,
-    /// Stop after this much wall time.
-    pub time_limit: Option<Duration>,
-    /// Record every rule evaluation (needed for a full trace); otherwise only changes.
-    pub trace_rules: bool,
-    /// Set to a signal number (non-zero) to stop the run after the round under way.
-    pub interrupt: Option<Arc<AtomicUsize>>,
-    /// Stop the run when the process's resident memory exceeds this many bytes.
-    pub max_memory: Option<u64>,
-    /// Wall time one cycle of an agent may take (a longer cycle is cut: runtime error).
-    pub cycle_time: Option<Duration>,
-    /// Most facts an agent's belief base may hold (more: runtime error of that agent).
-    pub max_beliefs: usize,
-    /// Most messages waiting for an agent in one round; more are dropped and reported.
-    pub max_mailbox: usize,
-    /// Most messages one agent may send in one cycle (more: runtime error of that agent).
-    pub max_sent: usize,
-}
-
-/// Default of [`RunOptions::max_memory`]: 4 GiB.
-pub const DEFAULT_MAX_MEMORY: u64 = 4 << 30;
-/// Default of [`RunOptions::max_mailbox`].
-pub const DEFAULT_MAX_MAILBOX: usize = 100_000;
 /// How often the resident memory is checked against the cap.
 const MEMORY_CHECK_EVERY: Duration = Duration::from_millis(20);
-
-impl Default for RunOptions {
-    fn default() -> Self {
-        RunOptions {
-            seed: None,
-            map: None,
-            robots: None,
-            max_ticks: 10_000,
-            workers: std::thread::available_parallelism().map_or(1, |n| n.get()),
-            skip_idle: true,
-            realtime: None,
-            time_limit: None,
-            trace_rules: true,
-            interrupt: None,
-            max_memory: Some(DEFAULT_MAX_MEMORY),
-            cycle_time: Some(crate::agent::DEFAULT_CYCLE_TIME),
-            max_beliefs: crate::agent::DEFAULT_MAX_BELIEFS,
-            max_mailbox: DEFAULT_MAX_MAILBOX,
-            max_sent: DEFAULT_MAX_MAILBOX,
-        }
-    }
-}
-
-/// Progress of a running system.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Progress {
-    pub round: u64,
-    pub tick: u64,
-    pub deliveries: Deliveries,
-    pub messages: u64,
-}
-
-/// Receives what a run produces besides the trace (all methods optional).
-pub trait Observer {
-    /// A line an agent printed with `print/1`.
-    fn printed(&mut self, _agent: &str, _line: &str) {}
-    /// A message sent in round `round` (`delivered` false when the receiver is unknown).
-    fn message(&mut self, _round: u64, _m: &Message, _delivered: bool) {}
-    /// A runtime warning.
-    fn warning(&mut self, _text: &str) {}
-    /// The environment refused an action.
-    fn action_failed(&mut self, _agent: &str, _action: &Term, _reason: &str) {}
-    /// True when the observer wants [`Observer::progress`] calls (they cost a status query).
-    fn wants_progress(&self) -> bool {
-        false
-    }
-    /// Progress, every few rounds.
-    fn progress(&mut self, _p: &Progress) {}
-    /// Every agent is created and the first round is about to start (benchmarks time the
-    /// creation apart from the run).
-    fn started(&mut self, _agents: usize, _workers: usize) {}
-
-    // A test controller takes part in the run through the methods below (`goal test` runs
-    // on this same round driver); plain observers keep the defaults.
-
-    /// Agent `i` (`name`, running `program`): an observer may create it itself, e.g. a tested
-    /// agent running an extended program under a controller; `None`: the usual agent.
-    fn agent(
-        &mut self,
-        _i: usize,
-        _name: &str,
-        _program: &Arc<Program>,
-        _config: &AgentConfig,
-    ) -> Option<Agent> {
-        None
-    }
-    /// The agents the observer steers (by index): they are stepped whenever
-    /// [`Observer::busy`] says so, and shown to the observer before and after each step.
-    fn steers(&self) -> Vec<usize> {
-        Vec::new()
-    }
-    /// True when steered agent `i` must be stepped this round even without new input.
-    fn busy(&self, _i: usize, _agent: &Agent) -> bool {
-        false
-    }
-    /// Steered agent `i` is about to be stepped.
-    fn before_step(&mut self, _i: usize, _agent: &Agent) {}
-    /// Steered agent `i` was stepped.
-    fn after_step(&mut self, _i: usize, _agent: &mut Agent) {}
-    /// True when the observer has what it needs: the run ends ([`EndReason::Released`]).
-    fn done(&self) -> bool {
-        false
-    }
-    /// The run ended: a last look at steered agent `i`.
-    fn ended(&mut self, _i: usize, _agent: &mut Agent, _end: EndReason) {}
-}
-
-/// An observer that ignores everything.
-pub struct Quiet;
-impl Observer for Quiet {}
 
 /// Runs `system` to its end; the trace (if any) is written as the run goes.
 pub fn run(
@@ -227,88 +96,6 @@ struct Setup<'a> {
 
 fn problem(code: &str, msg: String) -> Vec<Problem> {
     vec![Problem::bare(Diagnostic::error(code, msg, "run", 0..0))]
-}
-
-/// A per-agent seed from the run seed and the agent's name (FNV-1a, then splitmix64).
-pub fn agent_seed(seed: u64, name: &str) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in name.bytes() {
-        h ^= u64::from(b);
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    let mut z = seed ^ h;
-    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
-}
-
-/// The percept types the environment declares, in the agents' form.
-pub fn percept_types(info: &EnvInfo) -> PerceptTypes {
-    use crate::env::PerceptType as E;
-    PerceptTypes::new(info.declarations.iter().map(|d| {
-        let k = match d.kind {
-            E::Once => PerceptType::Once,
-            E::OnChange => PerceptType::OnChange,
-            E::OnChangeWithNegation => PerceptType::OnChangeNeg,
-            E::Always => PerceptType::Always,
-        };
-        ((d.name.clone(), d.arity), k)
-    }))
-}
-
-fn text_of(t: &Term) -> String {
-    t.to_text(Style::WRITE)
-}
-
-/// The environment's parameters with the run options applied; unknown keys are dropped with
-/// a warning (the BW4T of the Java distribution ignores them too).
-pub fn env_params(
-    setup: &EnvSetup,
-    opts: &RunOptions,
-    obs: &mut dyn Observer,
-) -> (InitParams, u64, String) {
-    let mut p = InitParams::new();
-    let kind = setup.kind;
-    for (k, v) in &setup.params {
-        if kind.param_names().contains(&k.as_str()) {
-            p.insert(k.clone(), v.clone());
-        } else {
-            obs.warning(&format!(
-                "init parameter `{k}` is not used by {}; ignored",
-                kind.name()
-            ));
-        }
-    }
-    if kind != super::environment::Builtin::Bw4t {
-        if opts.map.is_some() || opts.robots.is_some() {
-            obs.warning(&format!(
-                "--map and --robots are for bw4t, not {}; ignored",
-                kind.name()
-            ));
-        }
-        let seed = opts.seed.unwrap_or(0);
-        return (p, seed, String::new());
-    }
-    if let Some(s) = opts.seed {
-        p.insert("seed".into(), Term::Int(s as i64));
-    }
-    let seed = match p.get("seed") {
-        Some(Term::Int(i)) => *i as u64,
-        _ => 0,
-    };
-    p.insert("seed".into(), Term::Int(seed as i64));
-    if let Some(m) = &opts.map {
-        p.insert("map".into(), Term::string(m));
-    }
-    if let Some(r) = opts.robots {
-        p.insert("robots".into(), Term::Int(r as i64));
-    }
-    let map = p
-        .get("map")
-        .map(text_of)
-        .unwrap_or_else(|| crate::bw4t::map::DEFAULT_MAP.to_string());
-    (p, seed, map)
 }
 
 impl<'a> Setup<'a> {

@@ -2,9 +2,10 @@
 //! assembled and validated as one program, diagnostics mapped back to their files), and
 //! `.mod2g`/`.act2g`/`.pl` files on their own.
 
-use super::assemble::{assemble, kr_clauses, AgentBuild};
+use super::assemble::{assemble, AgentBuild};
 use super::ast::Generation;
 use super::mas::ModMas;
+use super::pl::kr_clauses;
 use crate::diag::{Diagnostic, Severity};
 use crate::syntax::ast::{Module, ModuleKind, ModuleOptions};
 use crate::syntax::check::FileReport;
@@ -300,7 +301,7 @@ pub fn check_act_file(path: &Path, text: &str) -> Vec<Diagnostic> {
 /// Checks a `.pl` file: `:- dynamic` directives are allowed (modular GOAL and MARBEL).
 pub fn check_pl_file(path: &Path, text: &str) -> Vec<Diagnostic> {
     let file = path.display().to_string();
-    let text = super::assemble::blank_dynamic(text);
+    let text = super::pl::blank_dynamic(text);
     // Read as GOAL reads Prolog files (its leniencies, with warnings).
     let mut reader = Reader::goal(file.as_str());
     let (clauses, mut diags) = reader.clauses(&text, 0);

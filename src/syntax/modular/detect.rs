@@ -1,4 +1,4 @@
-//! Telling the generations apart (§1.1 of the modular reference): a `.mas2g` file's first item
+//! Telling the generations apart (docs/modular-goal.md): a `.mas2g` file's first item
 //! decides; a `.mod2g` checked on its own is (B) when it uses a `.pl` file without `as`.
 
 use super::ast::Generation;

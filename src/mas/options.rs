@@ -1,0 +1,71 @@
+//! How to run a system: the options of `goal run` and `goal test` that reach the round driver.
+
+use std::sync::atomic::AtomicUsize;
+use std::sync::Arc;
+use std::time::Duration;
+
+/// Simulated seconds per tick: what `get_time/1` advances by per tick in lock-step runs (the
+/// BW4T server's default step delay), so runs are reproducible.
+pub const TICK_SECONDS: f64 = 0.01;
+
+/// How to run a system.
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// The run seed (overrides the MAS file's `seed`); default: the file's, else 0.
+    pub seed: Option<u64>,
+    /// A map (built-in name or file) replacing the MAS file's.
+    pub map: Option<String>,
+    /// Number of robots in the environment.
+    pub robots: Option<usize>,
+    /// Stop after this many ticks (rounds without an environment).
+    pub max_ticks: u64,
+    /// Worker threads for the agents.
+    pub workers: usize,
+    /// Do not step agents that have nothing new (the trace is the same either way).
+    pub skip_idle: bool,
+    /// Pace the rounds to this many per second (for watching); `None`: as fast as possible.
+    pub realtime: Option<f64>,
+    /// Stop after this much wall time.
+    pub time_limit: Option<Duration>,
+    /// Record every rule evaluation (needed for a full trace); otherwise only changes.
+    pub trace_rules: bool,
+    /// Set to a signal number (non-zero) to stop the run after the round under way.
+    pub interrupt: Option<Arc<AtomicUsize>>,
+    /// Stop the run when the process's resident memory exceeds this many bytes.
+    pub max_memory: Option<u64>,
+    /// Wall time one cycle of an agent may take (a longer cycle is cut: runtime error).
+    pub cycle_time: Option<Duration>,
+    /// Most facts an agent's belief base may hold (more: runtime error of that agent).
+    pub max_beliefs: usize,
+    /// Most messages waiting for an agent in one round; more are dropped and reported.
+    pub max_mailbox: usize,
+    /// Most messages one agent may send in one cycle (more: runtime error of that agent).
+    pub max_sent: usize,
+}
+
+/// Default of [`RunOptions::max_memory`]: 4 GiB.
+pub const DEFAULT_MAX_MEMORY: u64 = 4 << 30;
+/// Default of [`RunOptions::max_mailbox`].
+pub const DEFAULT_MAX_MAILBOX: usize = 100_000;
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        RunOptions {
+            seed: None,
+            map: None,
+            robots: None,
+            max_ticks: 10_000,
+            workers: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            skip_idle: true,
+            realtime: None,
+            time_limit: None,
+            trace_rules: true,
+            interrupt: None,
+            max_memory: Some(DEFAULT_MAX_MEMORY),
+            cycle_time: Some(crate::agent::DEFAULT_CYCLE_TIME),
+            max_beliefs: crate::agent::DEFAULT_MAX_BELIEFS,
+            max_mailbox: DEFAULT_MAX_MAILBOX,
+            max_sent: DEFAULT_MAX_MAILBOX,
+        }
+    }
+}
