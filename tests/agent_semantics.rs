@@ -1,4 +1,4 @@
-//! One test per semantic rule of the GOAL language (goal-language.md §4-§8).
+//! One test per semantic rule of the GOAL language.
 
 mod agent_support;
 use agent_support::*;

@@ -6,7 +6,7 @@ use bw4t_support::*;
 use goal::bw4t::{Bw4tConfig, RobotState};
 use goal::env::{ActionResult, Environment};
 
-/// (target, route length, estimated ticks) from the spawn point (25,65), bw4t.md §3.1.
+/// (target, route length, estimated ticks) from the spawn point (25,65), as the Java BW4T moves.
 const TABLE: &[(&str, f64, u64)] = &[
     ("DropZone", 10.0, 43),
     ("RoomC1", 60.0, 246),

@@ -83,7 +83,7 @@ impl MentalState {
         self.run(|e| e.holds(&view, q), q)
     }
 
-    /// Updates the model of `sender` from a received message (§8.4), then drops the goals of
+    /// Updates the model of `sender` from a received message (docs/coming-from-goal.md, "Mental models"), then drops the goals of
     /// that model that its beliefs achieve. Nothing happens unless models are kept, or for a
     /// message from this agent itself.
     pub fn update_model(&mut self, sender: &str, content: &Term) -> Result<(), Fault> {

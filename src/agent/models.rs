@@ -1,4 +1,4 @@
-//! Mental models of other agents (goal-language.md §4.3, §8.4): for each agent that sent this
+//! Mental models of other agents (described in docs/coming-from-goal.md): for each agent that sent this
 //! agent a message, the beliefs and goals its messages reveal, and the conditions with
 //! selectors other than `this`/`self` (`allother.bel(p)`, `(bob).goal(q)`, ...) that query them.
 //! Kept only by programs that use such selectors.

@@ -5,7 +5,7 @@
 //! [`Bw4t`] implements [`crate::env::Environment`]; run it on its own thread with
 //! [`crate::env::thread::EnvHandle`]. Maps are TOML files ([`map`]), built in by name
 //! ([`map::builtin`]) or imported from BW4T XML ([`xml::import`]). Behaviour follows the seed
-//! (the BW4T3 agent-environment interface) and `spec/bw4t.md`.
+//! (the BW4T3 agent-environment interface); users read docs/environments.md.
 //!
 //! Also here: [`greedy`], a scripted percept-driven player used as a smoke test and benchmark,
 //! and [`messages`], the seed's message vocabulary with speech acts and English sentences.

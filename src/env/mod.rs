@@ -4,7 +4,7 @@
 //! [`Environment::perform`] with actions written as terms, the world advances by
 //! [`Environment::tick`], and each entity receives a per-tick percept batch from
 //! [`Environment::percepts`]. Each percept predicate has a declared [`PerceptType`]; the agent
-//! runtime keeps a typed percept base from the batches (see `architecture.md`, "Typed percepts").
+//! runtime keeps a typed percept base from the batches (`agent::percepts`).
 //! [`filter::PerceptFilter`] turns the full current truth into such batches.
 //! [`thread::EnvHandle`] runs any environment on its own thread (lock-step or real-time), and
 //! [`FromInitParams`] creates one from init parameters (key -> term).

@@ -59,7 +59,7 @@ pub struct Knowledge {
     source: Vec<Term>,
 }
 
-/// Names that GOAL programs may not use as predicates (goal-language.md §3.3).
+/// Names that GOAL programs may not use as predicates (docs/prolog.md).
 const PROTECTED: &[&str] = &[
     "assert",
     "asserta",

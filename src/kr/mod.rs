@@ -9,7 +9,7 @@
 //!
 //! * [`Knowledge`]: compiled clauses, loaded once with [`Knowledge::load`] and shared through
 //!   `Arc` (per-agent state never copies it). Loading rejects protected predicates (`assert`,
-//!   `retract`, `:`, `catch`, directives, ... see goal-language.md §3.3), redefinitions of
+//!   `retract`, `:`, `catch`, directives, ... see docs/prolog.md), redefinitions of
 //!   built-ins, and clauses whose head is not callable, with a [`KrError::Load`] listing every
 //!   offending clause and naming the predicate. [`Knowledge::check_query`] applies the same
 //!   check to a query or condition.

@@ -28,7 +28,7 @@ const fn op(name: &'static str, priority: u16, kind: OpType) -> Op {
 
 use OpType::*;
 
-/// The whole table (GOAL language reference §1.3).
+/// The whole table (GOAL's fixed operator table).
 pub const OPERATORS: &[Op] = &[
     op(":-", 1200, Xfx),
     op("-->", 1200, Xfx),

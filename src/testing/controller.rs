@@ -1,6 +1,5 @@
 //! The test controller of one tested agent: compiles a named test's sections against the
-//! agent's program and runs them in sequence between the agent's cycles (goal-language.md
-//! §10.1): `do` runs actions or module calls as a task, `assert` checks a condition now,
+//! agent's program and runs them in sequence between the agent's cycles: `do` runs actions or module calls as a task, `assert` checks a condition now,
 //! `evaluate` runs a task while a [`Monitor`] checks its temporal conditions at every event.
 
 use super::monitor::{Boundary, Cond, Evaluation, Part, Temporal};

@@ -1,5 +1,5 @@
 //! Testing agents: `goal test` runs the named tests of `.test2g` files (the 2014 `masTest`
-//! form, goal-language.md §10.1) on a lock-step, seeded launch of their MAS, and golden traces
+//! form, see the README's "Testing agents") on a lock-step, seeded launch of their MAS, and golden traces
 //! check that a run still produces the trace it was recorded with.
 //!
 //! Entry points: [`runner::run_file`] (one `.test2g` file to one [`report::TestReport`] per

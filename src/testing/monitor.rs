@@ -1,5 +1,5 @@
-//! Test conditions and the temporal conditions of `evaluate` sections (goal-language.md
-//! §10.1), checked at every observable event: `always`, `never`, `eventually`, `atend`,
+//! Test conditions and the temporal conditions of `evaluate` sections (the README's
+//! "Testing agents"), checked at every observable event: `always`, `never`, `eventually`, `atend`,
 //! `watch`, chains `P -> Q` and `reactTo(P, Q)`.
 
 use crate::agent::condition::{eval, show_subst, CondCtx};

@@ -1,5 +1,5 @@
 //! The `.goal` lexer: `logos` recognises GOAL-level tokens; this wrapper cuts KR (Prolog) content
-//! out as single tokens (§1.2), skips comments, and turns bad input into diagnostics. It yields
+//! out as single tokens, skips comments, and turns bad input into diagnostics. It yields
 //! `(start, Tok, end)` triples for lalrpop's external-lexer mode.
 
 pub mod kr;

@@ -1,4 +1,4 @@
-//! The GOAL-level tokens of `.goal` and `.mod2g` files (§1.1), recognised with `logos`.
+//! The GOAL-level tokens of `.goal` and `.mod2g` files, recognised with `logos`.
 //! KR-content tokens (`KrBraces`, `KrParens`, ...) are produced by the wrapper in `mod.rs`.
 
 use logos::Logos;

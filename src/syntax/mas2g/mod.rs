@@ -1,4 +1,4 @@
-//! `.mas2g` files (goal-language.md §9): lexer, parser, AST and checks.
+//! `.mas2g` files: lexer, parser, AST and checks.
 //!
 //! Entry points: [`parse`] (text to [`MasFile`] plus syntax diagnostics) and [`check_files`]
 //! (agent files exist, launch rules reference known files).

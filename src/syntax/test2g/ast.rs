@@ -1,4 +1,4 @@
-//! The AST of a 2014 `.test2g` file (`masTest`, goal-language.md §10.1), with byte spans.
+//! The AST of a 2014 `.test2g` file (`masTest`), with byte spans.
 //! Conditions and actions reuse the `.goal` AST ([`Literal`], [`Action`]).
 
 use crate::diag::Span;
@@ -53,7 +53,7 @@ pub enum TestSection {
     },
 }
 
-/// A condition of a test: mental literals plus at most one `do(Action)` test (§10.1 `tmsc`).
+/// A condition of a test: mental literals plus at most one `do(Action)` test.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TestCondition {
     pub literals: Vec<Literal>,

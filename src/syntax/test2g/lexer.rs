@@ -1,4 +1,4 @@
-//! The `.test2g` token stream: the `.goal` lexer's tokens, with the test keywords (§1.1) picked
+//! The `.test2g` token stream: the `.goal` lexer's tokens, with the test keywords picked
 //! out of the names, and the brackets of `do(...)` and `reactTo(...)` opened up so the
 //! conditions inside them are tokenised (the `.goal` lexer would keep them as raw KR text).
 

@@ -1,4 +1,4 @@
-//! 2014 `.test2g` test files (`masTest`, goal-language.md §10.1): token stream, parser, AST and
+//! 2014 `.test2g` test files (`masTest`, see the README's "Testing agents"): token stream, parser, AST and
 //! checks. Conditions and actions are the `.goal` AST's literals and actions.
 //!
 //! Entry points: [`parse`] (text to [`MasTest`] plus syntax diagnostics) and [`check_files`]

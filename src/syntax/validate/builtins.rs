@@ -1,5 +1,5 @@
 //! The predicate names the validator knows about, kept in one place: the built-ins the KR layer
-//! supports (goal-language.md §3.3), the reserved predicates every agent has, and the protected
+//! supports (docs/prolog.md), the reserved predicates every agent has, and the protected
 //! names that may not appear in KR content.
 
 /// Built-in predicates as `(name, arity)`; arity `None` means any arity.
@@ -164,7 +164,7 @@ const BUILTINS: &[(&str, Option<usize>)] = &[
 ];
 
 /// Predicates every agent has: percepts (`newpercept/1`: the batch of this cycle), mail, and the
-/// agent facts (§3.1).
+/// agent facts.
 const RESERVED: &[(&str, usize)] = &[
     ("percept", 1),
     ("newpercept", 1),

@@ -1,4 +1,4 @@
-//! The validator of `.goal` programs (goal-language.md §11): every error and warning the 2014
+//! The validator of `.goal` programs: every error and warning the 2014
 //! validator gave, over the AST, each pointing at the exact span with a hint.
 //!
 //! Entry point: [`validate`]. Concerns are split by file: module structure (`modules`), action
