@@ -4,8 +4,36 @@ use crate::diag::Diagnostic;
 use crate::syntax::lexer::Tok;
 use lalrpop_util::ParseError;
 
+/// How a grammar's syntax errors name what was found and what to do: the 2014 grammar and the
+/// modular grammars share [`syntax_error_in`] and differ only in these.
+pub struct ErrorStyle<'a, T> {
+    /// The found token, shown from its text `src[l..r]`.
+    pub found: &'a dyn Fn(&str, usize, usize, &T) -> String,
+    /// A hint for an unexpected token, given the expected token names.
+    pub hint: &'a dyn Fn(&T, &[String]) -> Option<String>,
+    /// The hint for an unexpected end of file.
+    pub eof_hint: &'a dyn Fn(&[String]) -> String,
+}
+
 /// Turns a lalrpop error into a diagnostic (`E0014` unexpected token, `E0015` unexpected end).
 pub fn syntax_error(e: ParseError<usize, Tok, Diagnostic>, src: &str, file: &str) -> Diagnostic {
+    let style = ErrorStyle {
+        found: &|src: &str, l, r, tok: &Tok| found(src, l, r, *tok),
+        hint: &|tok: &Tok, expected: &[String]| hint(*tok, expected),
+        eof_hint: &|_: &[String]| {
+            "a module, section or rule is not finished: check for a missing `}` or `.`".into()
+        },
+    };
+    syntax_error_in(e, src, file, &style)
+}
+
+/// Turns a lalrpop error of any GOAL grammar into a diagnostic, named in `style`.
+pub fn syntax_error_in<T>(
+    e: ParseError<usize, T, Diagnostic>,
+    src: &str,
+    file: &str,
+    style: &ErrorStyle<'_, T>,
+) -> Diagnostic {
     match e {
         ParseError::User { error } => error,
         ParseError::InvalidToken { location } => {
@@ -20,7 +48,7 @@ pub fn syntax_error(e: ParseError<usize, Tok, Diagnostic>, src: &str, file: &str
             file,
             location..location,
         )
-        .with_hint("a module, section or rule is not finished: check for a missing `}` or `.`"),
+        .with_hint((style.eof_hint)(&expected)),
         ParseError::UnrecognizedToken {
             token: (l, tok, r),
             expected,
@@ -29,20 +57,20 @@ pub fn syntax_error(e: ParseError<usize, Tok, Diagnostic>, src: &str, file: &str
                 "E0014",
                 format!(
                     "unexpected {}, expected {}",
-                    found(src, l, r, tok),
+                    (style.found)(src, l, r, &tok),
                     expected_list(&expected)
                 ),
                 file,
                 l..r,
             );
-            match hint(tok, &expected) {
+            match (style.hint)(&tok, &expected) {
                 Some(h) => d.with_hint(h),
                 None => d,
             }
         }
         ParseError::ExtraToken { token: (l, tok, r) } => Diagnostic::error(
             "E0014",
-            format!("unexpected {}", found(src, l, r, tok)),
+            format!("unexpected {}", (style.found)(src, l, r, &tok)),
             file,
             l..r,
         ),

@@ -8,7 +8,7 @@ use super::token::MTok;
 use crate::diag::{Diagnostic, Span};
 use crate::syntax::ast::*;
 use crate::syntax::goal::build::{Builder, UpdateKw};
-use crate::syntax::goal::errors::expected_list;
+use crate::syntax::goal::errors::{syntax_error_in, ErrorStyle};
 use crate::syntax::prolog::TermSpans;
 use crate::term::{Sym, Term};
 use lalrpop_util::{ErrorRecovery, ParseError};
@@ -670,50 +670,16 @@ pub fn percept_query(q: &Located) -> Located {
 
 /// A lalrpop error as a diagnostic (`E0014` unexpected token, `E0015` unexpected end).
 pub fn syntax_error(e: ParseError<usize, MTok, Diagnostic>, src: &str, file: &str) -> Diagnostic {
-    match e {
-        ParseError::User { error } => error,
-        ParseError::InvalidToken { location } => {
-            Diagnostic::error("E0014", "invalid token", file, location..location + 1)
-        }
-        ParseError::UnrecognizedEof { location, expected } => Diagnostic::error(
-            "E0015",
-            format!(
-                "unexpected end of file, expected {}",
-                expected_list(&expected)
-            ),
-            file,
-            location..location,
-        )
-        .with_hint(
-            hint(&expected)
-                .unwrap_or("a module or rule is not finished: check for a missing `}` or `.`"),
-        ),
-        ParseError::UnrecognizedToken {
-            token: (l, _, r),
-            expected,
-        } => {
-            let d = Diagnostic::error(
-                "E0014",
-                format!(
-                    "unexpected {}, expected {}",
-                    shown(src, l, r),
-                    expected_list(&expected)
-                ),
-                file,
-                l..r,
-            );
-            match hint(&expected) {
-                Some(h) => d.with_hint(h),
-                None => d,
-            }
-        }
-        ParseError::ExtraToken { token: (l, _, r) } => Diagnostic::error(
-            "E0014",
-            format!("unexpected {}", shown(src, l, r)),
-            file,
-            l..r,
-        ),
-    }
+    let style = ErrorStyle {
+        found: &|src: &str, l, r, _: &MTok| shown(src, l, r),
+        hint: &|_: &MTok, expected: &[String]| hint(expected).map(String::from),
+        eof_hint: &|expected: &[String]| {
+            hint(expected)
+                .unwrap_or("a module or rule is not finished: check for a missing `}` or `.`")
+                .to_string()
+        },
+    };
+    syntax_error_in(e, src, file, &style)
 }
 
 fn hint(expected: &[String]) -> Option<&'static str> {
