@@ -9,6 +9,7 @@ pub mod blocksworld;
 pub mod bw4t;
 pub mod diag;
 pub mod env;
+pub mod grade;
 pub mod kr;
 pub mod mas;
 pub mod syntax;

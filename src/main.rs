@@ -40,6 +40,8 @@ enum Command {
     Prolog(cli::prolog::Args),
     /// Run a benchmark (token rings, reasoning, percept load, idle agents) and print its figures.
     Bench(cli::bench::Args),
+    /// Grade a class: run every submission on maps, robot counts and seeds; write one table.
+    Grade(cli::grade::Args),
 }
 
 fn main() -> ExitCode {
@@ -51,5 +53,6 @@ fn main() -> ExitCode {
         Command::Prolog(args) => cli::prolog::main(args),
         Command::Test(args) => cli::test::main(args),
         Command::Bench(args) => cli::bench::main(args),
+        Command::Grade(args) => cli::grade::main(args),
     }
 }

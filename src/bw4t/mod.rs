@@ -77,6 +77,7 @@ pub mod nav;
 pub mod obstacles;
 pub mod percepts;
 pub mod stats;
+pub mod teams;
 pub mod world;
 pub mod xml;
 
@@ -108,6 +109,8 @@ pub struct Bw4tConfig {
     pub collisions: bool,
     /// Also send BW4T 2's `navpoint/5` (a copy of each `zone/5`), for programs of that client.
     pub navpoints: bool,
+    /// Team sizes, robots assigned in spawn order (init `teams`; see [`teams`]); empty: no teams.
+    pub teams: Vec<usize>,
 }
 
 /// The init parameters [`Bw4t::from_params`] understands.
@@ -124,6 +127,7 @@ pub const INIT_PARAMS: &[&str] = &[
     "positionPercepts",
     "collisions",
     "navpoints",
+    "teams",
 ];
 
 /// The BW4T environment.
@@ -132,6 +136,7 @@ pub struct Bw4t {
     world: World,
     positions: bool,
     navpoints: bool,
+    teams: Vec<usize>,
     warnings: Vec<String>,
 }
 
@@ -143,7 +148,12 @@ impl Bw4t {
         if let Some(v) = config.one_bot_per_corridor_zone {
             world.one_bot_per_corridor_zone = v;
         }
-        let wanted = config.robots.unwrap_or(map.spawns.len());
+        let team_robots: usize = config.teams.iter().sum();
+        let wanted = match config.robots {
+            Some(n) => n,
+            None if team_robots > 0 => team_robots,
+            None => map.spawns.len(),
+        };
         let mut warnings = Vec::new();
         for i in 0..wanted {
             let mut rc = config.robot.clone();
@@ -165,6 +175,7 @@ impl Bw4t {
             world,
             positions: config.position_percepts,
             navpoints: config.navpoints,
+            teams: config.teams.clone(),
             warnings,
         }
     }
@@ -252,6 +263,10 @@ impl Bw4t {
                     Some(b) => cfg.navpoints = b,
                     None => return Err(bad(key, "true or false", v)),
                 },
+                "teams" => match team_sizes(v) {
+                    Some(sizes) => cfg.teams = sizes,
+                    None => return Err(bad(key, "a list of team sizes (1..1000)", v)),
+                },
                 other => {
                     return Err(vec![Diagnostic::error(
                         "M0021",
@@ -283,8 +298,22 @@ impl Bw4t {
         s.ticks = self.world.tick;
         s.sequence_index = self.world.sequence_index;
         s.robots = self.world.robots.iter().map(|r| r.stats.clone()).collect();
+        s.teams = teams::team_stats(&self.teams, &s.robots);
         s
     }
+}
+
+/// The sizes in a `teams` parameter: a non-empty list of integers 1..1000.
+fn team_sizes(v: &Term) -> Option<Vec<usize>> {
+    let items = v.list_items()?;
+    let sizes: Option<Vec<usize>> = items
+        .iter()
+        .map(|t| match t {
+            Term::Int(i) if (1..=1000).contains(i) => Some(*i as usize),
+            _ => None,
+        })
+        .collect();
+    sizes.filter(|s| !s.is_empty())
 }
 
 impl Environment for Bw4t {

@@ -48,4 +48,7 @@ pub struct RunStats {
     /// The tick at which the last block of the sequence was delivered.
     pub finished_at_tick: Option<u64>,
     pub robots: Vec<RobotStats>,
+    /// Deliveries per team, when the run has teams (init `teams`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub teams: Vec<super::teams::TeamStats>,
 }

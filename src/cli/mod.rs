@@ -3,6 +3,7 @@
 pub mod bench;
 pub mod check;
 pub mod exit;
+pub mod grade;
 pub mod limits;
 pub mod prolog;
 pub mod run;

@@ -359,7 +359,8 @@ impl Knowledge {
             ));
         }
         if let Some(PredRef::Builtin(b)) = self.table.get(&(name, arity as u32)) {
-            if !builtins::is_library(*b) {
+            // Names that are only refused at run time (file predicates) may be defined.
+            if !builtins::is_library(*b) && *b != B::Protected {
                 return Err(err(
                     Some(pi(name, arity)),
                     format!(

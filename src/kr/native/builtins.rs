@@ -95,6 +95,28 @@ pub(crate) fn is_library(b: B) -> bool {
     TABLE.iter().any(|(x, _, _, lib)| *x == b && *lib)
 }
 
+/// File, stream and operating-system predicates of SWI-Prolog: calling one is a permission
+/// error, never an undefined predicate that quietly fails (and never a file access).
+const FILE_IO: &[&str] = &[
+    "open",
+    "close",
+    "see",
+    "seen",
+    "tell",
+    "told",
+    "read",
+    "read_term",
+    "get_char",
+    "put_char",
+    "load_files",
+    "include",
+    "exists_file",
+    "delete_file",
+    "shell",
+    "getenv",
+    "setenv",
+];
+
 /// The library: built-ins plus the prelude clauses, compiled once.
 pub(crate) fn library() -> &'static Knowledge {
     static LIB: OnceLock<Knowledge> = OnceLock::new();
@@ -108,7 +130,10 @@ pub(crate) fn library() -> &'static Knowledge {
         }
         // Protected predicates called at run time (`call(assert(X))`, a `goal prolog` query)
         // raise a permission error instead of failing as unknown predicates do.
-        for name in crate::kr::knowledge::protected_names() {
+        // So are file and operating-system predicates: an agent never reads or writes files
+        // (knowledge may still define predicates of these names; they then shadow these).
+        let names = crate::kr::knowledge::protected_names().chain(FILE_IO.iter().copied());
+        for name in names {
             for a in 0..=4 {
                 k.table
                     .entry((Sym::intern(name), a))
