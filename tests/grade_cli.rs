@@ -219,3 +219,34 @@ fn an_unknown_output_format_is_a_usage_error() {
     assert_eq!(out.status.code(), Some(2));
     assert!(text(&out.stderr).contains(".csv, .json or .html"));
 }
+
+#[test]
+fn file_predicates_are_permission_errors_and_their_names_stay_free() {
+    let dir = temp_dir("files");
+    std::fs::write(dir.join("secret.txt"), "hidden(42).\n").unwrap();
+    std::fs::write(dir.join("kb.pl"), "open(door).\n").unwrap();
+    let prolog = |q: &str| {
+        Command::new(env!("CARGO_BIN_EXE_goal"))
+            .args(["prolog", "kb.pl", "-q", q])
+            .current_dir(&dir)
+            .output()
+            .expect("the binary runs")
+    };
+    for q in [
+        "G =.. [open, 'secret.txt', read, S], call(G)",
+        "see('secret.txt')",
+        "read_term(T, [])",
+        "consult('secret.txt')",
+        "shell('ls')",
+    ] {
+        let out = prolog(q);
+        let answer = text(&out.stdout);
+        assert_eq!(out.status.code(), Some(1), "{q}: {answer}");
+        assert!(answer.contains("permission_error"), "{q}: {answer}");
+        assert!(!answer.contains("42"), "{q}: {answer}");
+    }
+    // Knowledge may still define a predicate of such a name (another arity or its own).
+    let out = prolog("open(X)");
+    assert_eq!(text(&out.stdout).trim(), "X = door");
+    let _ = std::fs::remove_dir_all(&dir);
+}

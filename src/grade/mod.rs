@@ -162,7 +162,7 @@ pub fn grade(
             }
             Job::Tests(i) => Done::Tests(*i, tests::run_tests(&subs[*i], opts)),
         },
-        |k, done| progress(&describe(k, total, done, subs)),
+        |_, done| progress(&describe(total, done, subs)),
     );
     let mut runs = Vec::new();
     let mut tests = BTreeMap::new();
@@ -196,7 +196,7 @@ pub fn grade(
 }
 
 /// A progress line for a finished job.
-fn describe(_k: usize, total: usize, done: &Done, subs: &[Submission]) -> String {
+fn describe(total: usize, done: &Done, subs: &[Submission]) -> String {
     match done {
         Done::Run(r) => format!(
             "{} {} robots {} seed {}: {} ({} ticks){} [of {total} jobs]",
