@@ -145,9 +145,9 @@ pub fn main(args: Args) -> ExitCode {
     }
     let opts = GradeOptions {
         program,
-        maps: args.maps.clone(),
-        robots: args.robots.clone(),
-        seeds: args.seeds.clone(),
+        maps: distinct(&args.maps),
+        robots: distinct(&args.robots),
+        seeds: distinct(&args.seeds),
         jobs: args
             .jobs
             .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
@@ -178,6 +178,17 @@ pub fn main(args: Args) -> ExitCode {
         }
     }
     exit::code(if ok { exit::OK } else { exit::FAILURE })
+}
+
+/// `v` without repeated values (the first of each kept): a map given twice is graded once.
+fn distinct<T: Clone + PartialEq>(v: &[T]) -> Vec<T> {
+    let mut out: Vec<T> = Vec::new();
+    for x in v {
+        if !out.contains(x) {
+            out.push(x.clone());
+        }
+    }
+    out
 }
 
 /// Time a child gets past its own time limit before it is killed.

@@ -175,7 +175,7 @@ fn ticks_plot(rows: &[Row], ranking: &[Rank]) -> String {
             "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>",
             x0 + bar * names.len() as f64 / 2.0,
             top + plot_h + 16.0,
-            escape(map)
+            escape(short_map(map))
         );
     }
     let lx = left + group * maps.len().max(1) as f64 + 10.0;
@@ -193,6 +193,12 @@ fn ticks_plot(rows: &[Row], ranking: &[Rank]) -> String {
     }
     s.push_str("</svg>\n");
     s
+}
+
+/// A map file's name without directory and extension (a plot label); names stay as they are.
+fn short_map(map: &str) -> &str {
+    let name = map.rsplit(['/', '\\']).next().unwrap_or(map);
+    name.rsplit_once('.').map_or(name, |(stem, _)| stem)
 }
 
 /// Horizontal bars, one per submission in ranking order (length: completion rate).
@@ -275,6 +281,12 @@ fn hbars(what: &str, bars: &[(String, f64, String)], max: f64) -> String {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn map_files_are_labelled_by_their_stem() {
+        assert_eq!(super::short_map("maps/two-rooms.toml"), "two-rooms");
+        assert_eq!(super::short_map("banana"), "banana");
+    }
+
     #[test]
     fn text_is_escaped() {
         assert_eq!(
