@@ -214,10 +214,17 @@ fn submissions_without_one_mas_file_are_reported_not_skipped() {
 }
 
 #[test]
-fn an_unknown_output_format_is_a_usage_error() {
+fn an_unknown_output_format_or_map_is_a_usage_error() {
     let out = grade(&["tests/fixtures/grade/class", "--out", "table.xlsx"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(text(&out.stderr).contains(".csv, .json or .html"));
+    let out = grade(&["tests/fixtures/grade/class", "--maps", "banana,bananas"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = text(&out.stderr);
+    assert!(
+        err.contains("`bananas` is neither a built-in map (banana,"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -234,7 +241,7 @@ fn file_predicates_are_permission_errors_and_their_names_stay_free() {
     };
     for q in [
         "G =.. [open, 'secret.txt', read, S], call(G)",
-        "see('secret.txt')",
+        "open('secret.txt', read, S, [])",
         "read_term(T, [])",
         "consult('secret.txt')",
         "shell('ls')",
@@ -248,5 +255,8 @@ fn file_predicates_are_permission_errors_and_their_names_stay_free() {
     // Knowledge may still define a predicate of such a name (another arity or its own).
     let out = prolog("open(X)");
     assert_eq!(text(&out.stdout).trim(), "X = door");
+    // Names that agents use for beliefs are not taken.
+    let out = prolog("seen(a, b)");
+    assert_eq!(text(&out.stdout).trim(), "false");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -116,6 +116,13 @@ pub fn main(args: Args) -> ExitCode {
             return exit::code(exit::USAGE);
         }
     }
+    if let Some(m) = args.maps.iter().find(|m| !is_map(m)) {
+        eprintln!(
+            "error: --maps: `{m}` is neither a built-in map ({}) nor a map file",
+            goal::bw4t::map::builtin_names().join(", ")
+        );
+        return exit::code(exit::USAGE);
+    }
     let program = match std::env::current_exe() {
         Ok(p) => p,
         Err(e) => {
@@ -178,6 +185,11 @@ pub fn main(args: Args) -> ExitCode {
         }
     }
     exit::code(if ok { exit::OK } else { exit::FAILURE })
+}
+
+/// True for a built-in map name or an existing map file.
+fn is_map(m: &str) -> bool {
+    goal::bw4t::map::builtin(m).is_some() || Path::new(m).is_file()
 }
 
 /// `v` without repeated values (the first of each kept): a map given twice is graded once.

@@ -8,7 +8,7 @@
 
 use super::run::RunResult;
 use crate::env::EntityInfo;
-use crate::mas::environment::select_environment;
+use crate::mas::environment::{select_environment, Builtin};
 use crate::mas::launch::{Launch, Launcher};
 use crate::mas::MasSystem;
 use crate::syntax::mas2g::ast::{AgentName, EntitySpec, LaunchInstruction, LaunchRule, Spanned};
@@ -87,8 +87,11 @@ pub fn merge(teams: &[MasSystem], n: usize) -> Result<MasSystem, String> {
     };
     let mut taken = BTreeSet::new();
     for (t, sys) in teams.iter().enumerate() {
-        if sys.env.is_none() {
-            return Err(format!("{} has no environment to play in", sys.file));
+        if sys.env.as_ref().map(|e| e.kind) != Some(Builtin::Bw4t) {
+            return Err(format!(
+                "{} does not run in BW4T: tournaments are played in BW4T only",
+                sys.file
+            ));
         }
         let prefix = |r: &str| format!("team{}:{r}", t + 1);
         for (r, p) in &sys.programs {

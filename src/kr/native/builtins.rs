@@ -95,26 +95,19 @@ pub(crate) fn is_library(b: B) -> bool {
     TABLE.iter().any(|(x, _, _, lib)| *x == b && *lib)
 }
 
-/// File, stream and operating-system predicates of SWI-Prolog: calling one is a permission
-/// error, never an undefined predicate that quietly fails (and never a file access).
-const FILE_IO: &[&str] = &[
-    "open",
-    "close",
-    "see",
-    "seen",
-    "tell",
-    "told",
-    "read",
-    "read_term",
-    "get_char",
-    "put_char",
-    "load_files",
-    "include",
-    "exists_file",
-    "delete_file",
-    "shell",
-    "getenv",
-    "setenv",
+/// File and operating-system predicates of SWI-Prolog, with their arities: calling one is a
+/// permission error, never an undefined predicate that quietly fails (and never a file
+/// access). Only arities no agent uses for beliefs (`seen/2`, `read/1` stay free).
+const FILE_IO: &[(&str, &[u32])] = &[
+    ("open", &[3, 4]),
+    ("read_term", &[2, 3]),
+    ("load_files", &[1, 2]),
+    ("exists_file", &[1]),
+    ("exists_directory", &[1]),
+    ("delete_file", &[1]),
+    ("shell", &[1, 2]),
+    ("getenv", &[2]),
+    ("setenv", &[2]),
 ];
 
 /// The library: built-ins plus the prelude clauses, compiled once.
@@ -130,13 +123,19 @@ pub(crate) fn library() -> &'static Knowledge {
         }
         // Protected predicates called at run time (`call(assert(X))`, a `goal prolog` query)
         // raise a permission error instead of failing as unknown predicates do.
-        // So are file and operating-system predicates: an agent never reads or writes files
-        // (knowledge may still define predicates of these names; they then shadow these).
-        let names = crate::kr::knowledge::protected_names().chain(FILE_IO.iter().copied());
-        for name in names {
+        for name in crate::kr::knowledge::protected_names() {
             for a in 0..=4 {
                 k.table
                     .entry((Sym::intern(name), a))
+                    .or_insert(PredRef::Builtin(B::Protected));
+            }
+        }
+        // So are file and operating-system predicates: an agent never reads or writes files
+        // (knowledge may still define predicates of these names; they then shadow these).
+        for (name, arities) in FILE_IO {
+            for a in arities.iter() {
+                k.table
+                    .entry((Sym::intern(name), *a))
                     .or_insert(PredRef::Builtin(B::Protected));
             }
         }
