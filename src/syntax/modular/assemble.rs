@@ -30,8 +30,6 @@ pub struct AgentBuild {
     pub sources: SourceSet,
     /// Problems found (spans in the shared text; see [`SourceSet::localize`]).
     pub diagnostics: Vec<Diagnostic>,
-    /// Actions that parse but that this runtime cannot run (name and span).
-    pub unsupported: Vec<(&'static str, Span)>,
 }
 
 struct Loaded {
@@ -147,12 +145,6 @@ impl Assembler<'_> {
         let file = self.sources.segments[0].name.clone();
         self.diags
             .push(Diagnostic::error(code, msg, file, span).with_hint(hint));
-    }
-
-    fn warning(&mut self, code: &str, msg: impl Into<String>, span: Span, hint: &str) {
-        let file = self.sources.segments[0].name.clone();
-        self.diags
-            .push(Diagnostic::warning(code, msg, file, span).with_hint(hint));
     }
 
     fn not_found(&mut self, r: &str, ext: &str, span: Span) {
@@ -386,24 +378,14 @@ impl Assembler<'_> {
     fn finish(mut self) -> AgentBuild {
         let agent_span = self.agent.span.clone();
         let mut modules: Vec<Module> = Vec::new();
-        let mut unsupported = Vec::new();
         let mut has = BTreeSet::new();
         for l in std::mem::take(&mut self.loaded) {
             let mut m = l.file.module;
-            unsupported.extend(l.file.unsupported.iter().map(|u| (u.name, u.span.clone())));
             match l.role {
                 Some(Role::Init) => m.kind = ModuleKind::Init,
                 Some(Role::Main) => m.kind = ModuleKind::Main,
                 Some(Role::Event) => m.kind = ModuleKind::Event,
-                Some(Role::Shutdown) => {
-                    self.warning(
-                        "W0604",
-                        "the shutdown module is not run by this runtime",
-                        m.head_span.clone(),
-                        "move what it does into the main module",
-                    );
-                    continue;
-                }
+                Some(Role::Shutdown) => m.kind = ModuleKind::Shutdown,
                 None => self.name_check(&m, &l.file.file),
             }
             has.insert(m.name().to_string());
@@ -427,6 +409,7 @@ impl Assembler<'_> {
                 goals: Vec::new(),
                 program: Some(ProgramSection {
                     order: None,
+                    nested_order: None,
                     macros: Vec::new(),
                     rules: Vec::new(),
                     span: span.clone(),
@@ -479,7 +462,6 @@ impl Assembler<'_> {
             program,
             sources: self.sources,
             diagnostics: self.diags,
-            unsupported,
         }
     }
 

@@ -25,29 +25,13 @@ pub fn check_agent(
 ) -> (AgentBuild, Vec<Diagnostic>) {
     let build = assemble(&mas.file, mas_text, base, agent, mas.generation);
     let mut diags = build.diagnostics.clone();
-    for (name, span) in &build.unsupported {
-        diags.push(
-            Diagnostic::warning(
-                "W0606",
-                format!("`{name}` is read but this runtime cannot run it yet"),
-                &mas.file,
-                span.clone(),
-            )
-            .with_hint("`goal run` stops with an error at load time; see docs/modular-goal.md"),
-        );
-    }
     if !diags.iter().any(Diagnostic::is_error) {
         let mas_end = build.sources.segments[0].end;
         for d in crate::syntax::validate::validate(&build.program, None) {
             // What the lowering added points into the MAS file: its warnings are not the user's.
             // `newpercept/1` (this cycle's raw percepts) is provided by the runtime.
             let runtime = d.code == "E0121" && d.message.starts_with("`newpercept/1`");
-            // Unsupported actions are reported once, as such (not as undefined actions).
-            let unsupported = build
-                .unsupported
-                .iter()
-                .any(|(_, s)| s.start <= d.span.start && d.span.end <= s.end);
-            if runtime || unsupported || (d.span.start <= mas_end && !d.is_error()) {
+            if runtime || (d.span.start <= mas_end && !d.is_error()) {
                 continue;
             }
             // (B) a .pl file holds facts and rules of one predicate (database and knowledge).
@@ -207,17 +191,6 @@ pub fn check_module_file(path: &Path, text: &str, gen: Generation) -> Vec<Diagno
                 );
             }
         }
-    }
-    for u in &m.unsupported {
-        diags.push(
-            Diagnostic::warning(
-                "W0606",
-                format!("`{}` is read but this runtime cannot run it yet", u.name),
-                file.clone(),
-                u.span.clone(),
-            )
-            .with_hint("`goal run` stops with an error at load time"),
-        );
     }
     if gen == Generation::Modular {
         diags.extend(undefined_macros(&m.module, &file));

@@ -112,7 +112,14 @@ pub fn check_files(test: &MasTest, base_dir: &Path) -> Vec<Diagnostic> {
     }
     for a in &test.agents {
         for name in &a.agents {
-            if !mas.may_launch(name.name.name()) {
+            // (A) test files may name an agent definition: every agent launched from it.
+            let definition = is_modular
+                && mas
+                    .launch_rules
+                    .iter()
+                    .flat_map(|r| &r.instructions)
+                    .any(|i| i.reference.value == name.name.name());
+            if !definition && !mas.may_launch(name.name.name()) {
                 diags.push(
                     Diagnostic::error(
                         "E0306",
