@@ -680,6 +680,41 @@ fn modular_test_files_watch_the_tested_module() {
 }
 
 #[test]
+fn test_blocks_named_after_a_definition_run_in_every_agent_launched_from_it() {
+    use goal::testing::runner::{run_file, TestOptions};
+    use goal::testing::Outcome;
+    let mas = "define r as agent { use main as main module. }\nlaunchpolicy { launch r with name = bot, number = 2. }";
+    let dir = project(
+        "test2gdef",
+        &[
+            ("team.mas2g", mas),
+            (
+                "main.mod2g",
+                "module main { if true then insert(x) + exit-module. }",
+            ),
+            (
+                "team.test2g",
+                "use team as mas.\ntest main with in { eventually bel(x). }\nr { do main. }\n",
+            ),
+        ],
+    );
+    let reports = run_file(&dir.join("team.test2g"), &TestOptions::default());
+    let agents: Vec<&str> = reports.iter().map(|r| r.agent.as_str()).collect();
+    assert_eq!(
+        agents.len(),
+        2,
+        "{}",
+        reports.iter().map(|r| r.to_text()).collect::<String>()
+    );
+    assert!(agents.iter().all(|a| a.starts_with("bot")), "{agents:?}");
+    let text: String = reports.iter().map(|r| r.to_text()).collect();
+    assert!(
+        reports.iter().all(|r| r.outcome == Outcome::Passed),
+        "{text}"
+    );
+}
+
+#[test]
 fn files_checked_on_their_own() {
     let dir = project(
         "alone",

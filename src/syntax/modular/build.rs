@@ -150,13 +150,10 @@ impl<'s> MBuilder<'s> {
         self.inner.ident(span)
     }
 
-    /// A quoted reference without its quotes.
+    /// A quoted reference (strings joined by `+`) without its quotes.
     pub fn ref_string(&self, span: Span) -> Spanned<String> {
-        let text = &self.src()[span.clone()];
         Spanned {
-            value: text[1..text.len() - 1]
-                .replace("\\\"", "\"")
-                .replace("\\'", "'"),
+            value: super::mas::joined_strings(&self.src()[span.clone()]),
             span,
         }
     }
