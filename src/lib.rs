@@ -11,6 +11,7 @@ pub mod diag;
 pub mod env;
 pub mod kr;
 pub mod mas;
+pub mod suggest;
 pub mod syntax;
 pub mod term;
 pub mod testing;

@@ -98,7 +98,7 @@ pub fn assemble(
             }
             match resolve(base, &reference.value, &["mod2g"]) {
                 Some(p) => a.load_module(&p, Some(role.value), reference.span.clone()),
-                None => a.not_found(&reference.value, "mod2g", reference.span.clone()),
+                None => a.not_found(base, &reference.value, "mod2g", reference.span.clone()),
             }
         }
     }
@@ -136,6 +136,30 @@ pub fn resolve(dir: &Path, r: &str, exts: &[&str]) -> Option<PathBuf> {
         .find(|q| q.is_file())
 }
 
+/// The file of `dir` with extension `ext` whose name (without the extension) is closest to
+/// the reference `r`.
+pub fn near_file(dir: &Path, r: &str, ext: &str) -> Option<String> {
+    let (sub, name) = match r.rsplit_once('/') {
+        Some((d, n)) => (dir.join(d), n),
+        None => (dir.to_path_buf(), r),
+    };
+    let mut stems: Vec<String> = std::fs::read_dir(&sub)
+        .ok()?
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .filter(|p| p.extension().and_then(|e| e.to_str()) == Some(ext))
+        .filter_map(|p| p.file_stem().and_then(|s| s.to_str()).map(str::to_string))
+        .take(10_000)
+        .collect();
+    // Directory order depends on the file system: compare in name order.
+    stems.sort();
+    let near = crate::suggest::closest(name, stems.iter().map(String::as_str))?;
+    let prefix = r
+        .rsplit_once('/')
+        .map_or(String::new(), |(d, _)| format!("{d}/"));
+    Some(format!("{prefix}{near}"))
+}
+
 fn canonical(p: &Path) -> PathBuf {
     p.canonicalize().unwrap_or_else(|_| p.to_path_buf())
 }
@@ -147,12 +171,16 @@ impl Assembler<'_> {
             .push(Diagnostic::error(code, msg, file, span).with_hint(hint));
     }
 
-    fn not_found(&mut self, r: &str, ext: &str, span: Span) {
+    fn not_found(&mut self, dir: &Path, r: &str, ext: &str, span: Span) {
+        let hint = match near_file(dir, r, ext) {
+            Some(f) => format!("did you mean `{f}`?"),
+            None => "references are relative to the file that contains the use clause".into(),
+        };
         self.error(
             "E0607",
             format!("`{r}` not found (looked for `{r}` and `{r}.{ext}`)"),
             span,
-            "references are relative to the file that contains the use clause",
+            &hint,
         );
     }
 
@@ -238,7 +266,7 @@ impl Assembler<'_> {
                     let c = case.unwrap_or(UseCase::Knowledge);
                     match resolve(dir, &r.value, &["pl"]) {
                         Some(p) => self.load_kr(&p, c, span),
-                        None => self.not_found(&r.value, "pl", span),
+                        None => self.not_found(dir, &r.value, "pl", span),
                     }
                 }
                 _ if !in_module => self.error(
@@ -249,11 +277,11 @@ impl Assembler<'_> {
                 ),
                 Some(UseCase::Module) => match resolve(dir, &r.value, &["mod2g"]) {
                     Some(p) => self.load_module(&p, None, span),
-                    None => self.not_found(&r.value, "mod2g", span),
+                    None => self.not_found(dir, &r.value, "mod2g", span),
                 },
                 Some(UseCase::ActionSpec) => match resolve(dir, &r.value, &["act2g"]) {
                     Some(p) => self.load_act(&p, span),
-                    None => self.not_found(&r.value, "act2g", span),
+                    None => self.not_found(dir, &r.value, "act2g", span),
                 },
                 Some(UseCase::Mas | UseCase::Planner) => {}
                 None => {

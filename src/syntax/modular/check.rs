@@ -112,7 +112,12 @@ fn mas_checks(mas: &ModMas) -> Vec<Diagnostic> {
                         f.clone(),
                         i.reference.span.clone(),
                     )
-                    .with_hint(format!("defined: {}", defined.join(", "))),
+                    .with_hint(
+                        match crate::suggest::closest(&i.reference.value, defined.clone()) {
+                            Some(d) => format!("did you mean `{d}`?"),
+                            None => format!("defined: {}", defined.join(", ")),
+                        },
+                    ),
                 );
             }
         }
@@ -187,7 +192,12 @@ pub fn check_module_file(path: &Path, text: &str, gen: Generation) -> Vec<Diagno
                         file.clone(),
                         r.span.clone(),
                     )
-                    .with_hint("references are relative to this file's directory"),
+                    .with_hint(
+                        match super::assemble::near_file(dir, &r.value, exts[0]) {
+                            Some(f) => format!("did you mean `{f}`?"),
+                            None => "references are relative to this file's directory".into(),
+                        },
+                    ),
                 );
             }
         }

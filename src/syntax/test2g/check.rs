@@ -4,6 +4,7 @@
 use super::ast::MasTest;
 use crate::diag::Diagnostic;
 use crate::syntax::mas2g;
+use crate::syntax::mas2g::ast::AgentName;
 use std::collections::BTreeSet;
 use std::path::Path;
 
@@ -120,6 +121,19 @@ pub fn check_files(test: &MasTest, base_dir: &Path) -> Vec<Diagnostic> {
                     .flat_map(|r| &r.instructions)
                     .any(|i| i.reference.value == name.name.name());
             if !definition && !mas.may_launch(name.name.name()) {
+                let launched = mas
+                    .launch_rules
+                    .iter()
+                    .flat_map(|r| &r.instructions)
+                    .map(|i| match &i.name {
+                        Some(AgentName::Given(g)) => g.value.as_str(),
+                        _ => i.reference.value.as_str(),
+                    });
+                let hint = match crate::suggest::closest(name.name.name(), launched) {
+                    Some(n) => format!("did you mean `{n}`?"),
+                    None => "test blocks are named after the agents that the MAS file launches"
+                        .to_string(),
+                };
                 diags.push(
                     Diagnostic::error(
                         "E0306",
@@ -127,7 +141,7 @@ pub fn check_files(test: &MasTest, base_dir: &Path) -> Vec<Diagnostic> {
                         file,
                         name.span.clone(),
                     )
-                    .with_hint("test blocks are named after the agents that the MAS file launches"),
+                    .with_hint(hint),
                 );
             }
         }
