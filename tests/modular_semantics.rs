@@ -715,6 +715,32 @@ fn test_blocks_named_after_a_definition_run_in_every_agent_launched_from_it() {
 }
 
 #[test]
+fn predicates_declared_dynamic_may_be_queried_before_any_fact_exists() {
+    let dir = project(
+        "dynamic",
+        &[
+            ("team.mas2g", A_MAS),
+            ("init.mod2g", "use k as knowledge. module init { if bel(seen(X)) then print(X). }"),
+            ("k.pl", ":- dynamic seen/1, other/2.\nvisited/1.\n"),
+            ("main.mod2g", "use k as knowledge. module main { if bel(visited(R), \\+ gone(R)) then exit-module. }"),
+            ("events.mod2g", EMPTY_EVENTS),
+        ],
+    );
+    let codes: Vec<String> = check_path_with_agents(&dir.join("team.mas2g"))
+        .iter()
+        .flat_map(|r| {
+            r.diagnostics
+                .iter()
+                .map(|d| format!("{}: {}", d.code, d.message))
+        })
+        .filter(|d| d.starts_with("E0121"))
+        .collect();
+    // seen/1 is declared, visited/1 too (a `p/1.` line after the directive); gone/1 is not.
+    assert_eq!(codes.len(), 1, "{codes:?}");
+    assert!(codes[0].contains("`gone/1`"), "{codes:?}");
+}
+
+#[test]
 fn files_checked_on_their_own() {
     let dir = project(
         "alone",

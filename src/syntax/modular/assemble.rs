@@ -15,7 +15,7 @@ use super::lower::{
     clear_messages, environment_actions, local_macros, mentions, percept_declaration, query,
 };
 use super::mas::{AgentDef, AgentItem, Role};
-use super::pl::{blank_dynamic, kr_clauses};
+use super::pl::{blank_dynamic, declared, kr_clauses};
 use super::sources::SourceSet;
 use crate::diag::{Diagnostic, Span};
 use crate::syntax::ast::*;
@@ -30,6 +30,8 @@ pub struct AgentBuild {
     pub sources: SourceSet,
     /// Problems found (spans in the shared text; see [`SourceSet::localize`]).
     pub diagnostics: Vec<Diagnostic>,
+    /// Predicates the `.pl` files declare `dynamic` (querying them is never an error).
+    pub declared: BTreeSet<(String, usize)>,
 }
 
 struct Loaded {
@@ -50,6 +52,7 @@ struct Assembler<'a> {
     knowledge: Vec<Located>,
     beliefs: Vec<Located>,
     goals: Vec<Located>,
+    declared: BTreeSet<(String, usize)>,
     agent: &'a AgentDef,
 }
 
@@ -74,6 +77,7 @@ pub fn assemble(
         knowledge: Vec::new(),
         beliefs: Vec::new(),
         goals: Vec::new(),
+        declared: BTreeSet::new(),
         agent,
     };
     // The MAS text comes first: spans of what the lowering adds point at the agent definition.
@@ -374,6 +378,8 @@ impl Assembler<'_> {
         let text = blank_dynamic(&self.sources.text[start..end]);
         let (clauses, diags) = Reader::new(name.as_str()).clauses(&text, start);
         self.diags.extend(diags);
+        let raw = &self.sources.text[start..end];
+        self.declared.extend(declared(raw, &clauses));
         for c in kr_clauses(clauses, &name, &mut self.diags) {
             let rule = matches!(c.term.functor(), Some((f, 2)) if f.name() == ":-");
             match case {
@@ -490,6 +496,7 @@ impl Assembler<'_> {
             program,
             sources: self.sources,
             diagnostics: self.diags,
+            declared: self.declared,
         }
     }
 

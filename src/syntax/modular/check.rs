@@ -31,11 +31,24 @@ pub fn check_agent(
             // What the lowering added points into the MAS file: its warnings are not the user's.
             // `newpercept/1` (this cycle's raw percepts) is provided by the runtime.
             let runtime = d.code == "E0121" && d.message.starts_with("`newpercept/1`");
+            // A predicate declared `:- dynamic` is a belief that may not exist yet (GOAL too).
+            let dynamic = d.code == "E0121"
+                && build
+                    .declared
+                    .iter()
+                    .any(|(n, a)| d.message.starts_with(&format!("`{n}/{a}`")));
+            if dynamic {
+                continue;
+            }
             if runtime || (d.span.start <= mas_end && !d.is_error()) {
                 continue;
             }
             // (B) a .pl file holds facts and rules of one predicate (database and knowledge).
             if mas.generation == Generation::Marbel && d.code == "E0122" {
+                continue;
+            }
+            // `p/1.` lines after `:- dynamic` are facts of '/'/2, already warned about (W0609).
+            if d.code == "W0110" && d.message.starts_with("`//2`") {
                 continue;
             }
             diags.push(d);
