@@ -121,14 +121,8 @@ pub fn check_files(test: &MasTest, base_dir: &Path) -> Vec<Diagnostic> {
                     .flat_map(|r| &r.instructions)
                     .any(|i| i.reference.value == name.name.name());
             if !definition && !mas.may_launch(name.name.name()) {
-                let launched = mas
-                    .launch_rules
-                    .iter()
-                    .flat_map(|r| &r.instructions)
-                    .map(|i| match &i.name {
-                        Some(AgentName::Given(g)) => g.value.as_str(),
-                        _ => i.reference.value.as_str(),
-                    });
+                let launched = launched_names(&mas);
+                let launched = launched.iter().map(String::as_str);
                 let hint = match crate::suggest::closest(name.name.name(), launched) {
                     Some(n) => format!("did you mean `{n}`?"),
                     None => "test blocks are named after the agents that the MAS file launches"
@@ -152,4 +146,20 @@ pub fn check_files(test: &MasTest, base_dir: &Path) -> Vec<Diagnostic> {
     let mas_dir = full.parent().unwrap_or(base_dir);
     diags.extend(super::calls::check_calls(test, &mas, mas_dir));
     diags
+}
+
+/// The names the launch rules of `mas` give (up to 100 of each numbered series).
+fn launched_names(mas: &mas2g::ast::MasFile) -> Vec<String> {
+    let mut out = Vec::new();
+    for i in mas.launch_rules.iter().flat_map(|r| &r.instructions) {
+        let base = match &i.name {
+            Some(AgentName::Given(g)) => g.value.as_str(),
+            _ => i.reference.value.as_str(),
+        };
+        match i.count() {
+            0 | 1 => out.push(base.to_string()),
+            n => out.extend((1..=n.min(100)).map(|k| format!("{base}{k}"))),
+        }
+    }
+    out
 }
