@@ -12,6 +12,7 @@ pub mod env;
 pub mod grade;
 pub mod kr;
 pub mod mas;
+pub mod suggest;
 pub mod syntax;
 pub mod term;
 pub mod testing;

@@ -448,20 +448,200 @@ fn a_module_of_another_generation_is_a_clear_error() {
     );
 }
 
+/// Agents `names` of definition `def` in the project's `team.mas2g`, knowing each other.
+fn agents(dir: &Path, def: &str, names: &[&str]) -> Vec<Agent> {
+    let sys = load_mas(&dir.join("team.mas2g")).expect("loads");
+    let cfg = AgentConfig {
+        seed: 1,
+        agents: names.iter().map(|n| n.to_string()).collect(),
+        ..AgentConfig::default()
+    };
+    names
+        .iter()
+        .map(|n| Agent::new(sys.programs[def].clone(), n, cfg.clone()))
+        .collect()
+}
+
+/// One cycle at simulated time `ms` (what lock-step runs give the agents).
+fn step_at(a: &mut Agent, ms: u64, percepts: &[&str], msgs: &[Message]) -> CycleOutput {
+    a.set_clock(Some(ms as f64 / 1000.0));
+    step(a, percepts, msgs)
+}
+
 #[test]
-fn unsupported_actions_stop_loading_with_an_error() {
+fn shutdown_module_runs_once_when_main_exits() {
+    let mas = "define r as agent { use main as main module. use bye as shutdown module. }
+launchpolicy { launch r. }";
     let dir = project(
-        "sleep",
+        "shutdown",
         &[
-            ("team.mas2g", A_MAS),
-            ("init.mod2g", "module init { if true then exit-module. }"),
-            ("main.mod2g", "module main { if true then sleep(100). }"),
-            ("events.mod2g", EMPTY_EVENTS),
+            ("team.mas2g", mas),
+            (
+                "main.mod2g",
+                "module main { if true then print(last) + exit-module. }",
+            ),
+            (
+                "bye.mod2g",
+                "module bye { if true then print(bye). if true then print(all_rules_run). }",
+            ),
         ],
     );
-    let p = load_mas(&dir.join("team.mas2g")).expect_err("does not load");
-    assert_eq!(p[0].diagnostic.code, "E0600");
-    assert!(p[0].diagnostic.file.ends_with("main.mod2g"));
+    let sys = load_mas(&dir.join("team.mas2g")).expect("loads");
+    assert!(
+        sys.warnings.is_empty(),
+        "no warning about the shutdown module"
+    );
+    let mut a = agent(&dir, "r");
+    let out = step(&mut a, &[], &[]);
+    assert_eq!(out.printed, ["last", "bye", "all_rules_run"]);
+    assert!(out.stopped.is_some());
+    assert!(step(&mut a, &[], &[]).printed.is_empty(), "it runs once");
+}
+
+#[test]
+fn nested_blocks_inherit_the_files_order() {
+    // The event module runs to completion in one cycle: what prints is what its block chose.
+    let events = |order: &str| {
+        format!(
+            "{order} module events {{ if true then {{ if true then print(first). if true then print(second). }} }}"
+        )
+    };
+    let run = |name: &str, order: &str| {
+        let init = "module init { if true then exit-module. }";
+        let mut a = a_project(name, init, IDLE_MAIN, &events(order), &[]);
+        step(&mut a, &["tick"], &[]).printed
+    };
+    // `order = linear.` of the file: the nested block stops after its first rule that acts.
+    assert_eq!(run("nested_linear", "order = linear."), ["first"]);
+    // No order written: nested blocks run every rule (linearall).
+    assert_eq!(run("nested_default", ""), ["first", "second"]);
+}
+
+#[test]
+fn sleep_skips_cycles_by_simulated_time_and_keeps_messages() {
+    let mut a = a_project(
+        "sleep",
+        "module init { if true then exit-module. }",
+        "module main {
+            if not(bel(slept)) then insert(slept) + sleep(30).
+            if bel(slept), not(bel(woke)) then print(awake) + insert(woke).
+         }",
+        "module events { forall (S).sent(M) do print(heard(S, M)). }",
+        &[],
+    );
+    step_at(&mut a, 0, &[], &[]);
+    assert!(!a.waiting(), "a sleeping agent is stepped every round");
+    let hello = Message {
+        sender: "bob".into(),
+        receiver: "a".into(),
+        content: t("hello"),
+    };
+    let asleep = step_at(&mut a, 10, &["in(r1)"], &[hello]);
+    assert!(
+        asleep.printed.is_empty()
+            && asleep
+                .events
+                .iter()
+                .all(|e| !matches!(e, goal::agent::Event::CycleStart { .. }))
+    );
+    assert!(
+        a.mental_state().percepts.contains(&t("in(r1)")),
+        "percepts that come during sleep are taken in"
+    );
+    assert!(step_at(&mut a, 20, &[], &[]).printed.is_empty());
+    let cycles = a.cycles();
+    let woke = step_at(&mut a, 30, &[], &[]);
+    assert_eq!(a.cycles(), cycles + 1, "no cycle ran while asleep");
+    assert_eq!(
+        woke.printed,
+        ["heard(bob,hello)", "awake"],
+        "the message waited for the agent"
+    );
+}
+
+#[test]
+fn timers_give_timer_percepts_per_interval_until_their_duration() {
+    let mut a = a_project(
+        "timers",
+        "module init { if true then starttimer(t, 20, 50) + starttimer(stop, 10, 0). }",
+        "module main { if percept(timer(stop, 2)) then canceltimer(stop). }",
+        "module events { forall percept(timer(Name, N)) do print(tick(Name, N)). }",
+        &[],
+    );
+    let mut seen = Vec::new();
+    for ms in (0..=80).step_by(10) {
+        seen.extend(step_at(&mut a, ms, &[], &[]).printed);
+    }
+    assert_eq!(
+        seen,
+        ["tick(stop,1)", "tick(stop,2)", "tick(t,1)", "tick(t,2)"],
+        "t fires at 20 and 40 ms and ends at 50 ms; stop fires until cancelled"
+    );
+}
+
+#[test]
+fn channel_messages_reach_subscribers_only() {
+    let dir = project(
+        "channels",
+        &[
+            ("team.mas2g", A_MAS),
+            ("init.mod2g", "module init { if bel(me(a)) then subscribe(news). }"),
+            (
+                "main.mod2g",
+                "module main { if bel(me(bob)), not(bel(sent)) then (news).send(hello) + insert(sent). }",
+            ),
+            (
+                "events.mod2g",
+                "module events { forall (S).sent(hello) do print(heard(S)). }",
+            ),
+        ],
+    );
+    let mut ags = agents(&dir, "r", &["a", "bob"]);
+    step(&mut ags[0], &[], &[]);
+    let out = step(&mut ags[1], &[], &[]);
+    assert!(!out.messages.is_empty());
+    let to = |name: &str| -> Vec<Message> {
+        out.messages
+            .iter()
+            .filter(|m| m.receiver == name)
+            .cloned()
+            .collect()
+    };
+    let (to_a, to_bob) = (to("a"), to("bob"));
+    assert_eq!(step(&mut ags[0], &[], &to_a).printed, ["heard(bob)"]);
+    assert!(
+        step(&mut ags[1], &[], &to_bob).printed.is_empty(),
+        "bob did not subscribe"
+    );
+}
+
+#[test]
+fn marbel_messages_are_seen_by_the_updates_module_for_one_cycle() {
+    let dir = project(
+        "marbelmail",
+        &[
+            ("team.mas2g", B_MAS),
+            (
+                "control.mod2g",
+                "module control { if received(_, _) then print(decisions_saw_it). }",
+            ),
+            (
+                "update.mod2g",
+                "module update { forall received(S, M) do print(got(S, M)). }",
+            ),
+        ],
+    );
+    let mut a = agent(&dir, "r");
+    let m = Message {
+        sender: "bob".into(),
+        receiver: "a".into(),
+        content: t("imp(goTo(r1))"),
+    };
+    assert_eq!(step(&mut a, &[], &[m]).printed, ["got(bob,imp(goTo(r1)))"]);
+    assert!(
+        step(&mut a, &["tick"], &[]).printed.is_empty(),
+        "gone the next cycle"
+    );
 }
 
 #[test]
@@ -497,6 +677,67 @@ fn modular_test_files_watch_the_tested_module() {
         "{}",
         fail[0].to_text()
     );
+}
+
+#[test]
+fn test_blocks_named_after_a_definition_run_in_every_agent_launched_from_it() {
+    use goal::testing::runner::{run_file, TestOptions};
+    use goal::testing::Outcome;
+    let mas = "define r as agent { use main as main module. }\nlaunchpolicy { launch r with name = bot, number = 2. }";
+    let dir = project(
+        "test2gdef",
+        &[
+            ("team.mas2g", mas),
+            (
+                "main.mod2g",
+                "module main { if true then insert(x) + exit-module. }",
+            ),
+            (
+                "team.test2g",
+                "use team as mas.\ntest main with in { eventually bel(x). }\nr { do main. }\n",
+            ),
+        ],
+    );
+    let reports = run_file(&dir.join("team.test2g"), &TestOptions::default());
+    let agents: Vec<&str> = reports.iter().map(|r| r.agent.as_str()).collect();
+    assert_eq!(
+        agents.len(),
+        2,
+        "{}",
+        reports.iter().map(|r| r.to_text()).collect::<String>()
+    );
+    assert!(agents.iter().all(|a| a.starts_with("bot")), "{agents:?}");
+    let text: String = reports.iter().map(|r| r.to_text()).collect();
+    assert!(
+        reports.iter().all(|r| r.outcome == Outcome::Passed),
+        "{text}"
+    );
+}
+
+#[test]
+fn predicates_declared_dynamic_may_be_queried_before_any_fact_exists() {
+    let dir = project(
+        "dynamic",
+        &[
+            ("team.mas2g", A_MAS),
+            ("init.mod2g", "use k as knowledge. module init { if bel(seen(X)) then print(X). }"),
+            ("k.pl", ":- dynamic seen/1, other/2.\nvisited/1.\n"),
+            ("main.mod2g", "use k as knowledge. module main { if bel(visited(R), \\+ gone(R)) then exit-module. }"),
+            ("events.mod2g", EMPTY_EVENTS),
+        ],
+    );
+    let codes: Vec<String> = check_path_with_agents(&dir.join("team.mas2g"))
+        .iter()
+        .flat_map(|r| {
+            r.diagnostics
+                .iter()
+                .map(|d| format!("{}: {}", d.code, d.message))
+        })
+        .filter(|d| d.starts_with("E0121"))
+        .collect();
+    // seen/1 is declared, visited/1 too (a `p/1.` line after the directive); gone/1 is not.
+    assert_eq!(codes.len(), 1, "{codes:?}");
+    assert!(codes[0].contains("`gone/1`"), "{codes:?}");
 }
 
 #[test]

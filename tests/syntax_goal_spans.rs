@@ -85,7 +85,9 @@ impl Check<'_> {
                 self.term(content, s);
             }
             ActionKind::Print(t) | ActionKind::Log(t) => self.term(t, s),
-            ActionKind::Call { args, .. } => args.iter().for_each(|t| self.term(t, s)),
+            ActionKind::Call { args, .. } | ActionKind::Timing { args, .. } => {
+                args.iter().for_each(|t| self.term(t, s))
+            }
             ActionKind::ExitModule | ActionKind::BuiltinModule(_) => {}
         }
     }

@@ -75,8 +75,9 @@ impl Core {
                 mood,
                 content,
                 once,
-            } => self.send(to, *mood, content, *once, s),
+            } => self.send(to, *mood, content, *once, prog.channels, s),
             Act::Spec { spec, args } => self.user_action(&prog.specs[*spec], args, s),
+            Act::Timing { op, args } => self.timing_action(*op, args, s),
             Act::ExitModule | Act::Module { .. } => Ok(Outcome::Done { real: false }),
         }
     }

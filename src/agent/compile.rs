@@ -39,6 +39,7 @@ pub(crate) fn compile<'s>(
         specs: Vec::new(),
         callables: BTreeMap::new(),
         select_modules: Vec::new(),
+        nested_order: Order::LinearAll,
     };
     let mut units: Vec<Unit<'s>> = ast
         .modules
@@ -70,6 +71,8 @@ pub(crate) struct Compiler<'s> {
     specs: Vec<SpecDef>,
     callables: BTreeMap<(String, usize), Callable>,
     select_modules: Vec<usize>,
+    /// Order of nested blocks in the module being compiled.
+    nested_order: Order,
 }
 
 /// The program's macros and callables (modules and action specs by name/arity), kept in the
@@ -185,6 +188,7 @@ impl<'s> Compiler<'s> {
             ast::ModuleKind::Init => (ModuleKind::Init, Vec::new()),
             ast::ModuleKind::Main => (ModuleKind::Main, Vec::new()),
             ast::ModuleKind::Event => (ModuleKind::Event, Vec::new()),
+            ast::ModuleKind::Shutdown => (ModuleKind::Shutdown, Vec::new()),
             ast::ModuleKind::User { params, .. } => (
                 ModuleKind::User,
                 params.iter().map(|l| l.term.clone()).collect(),
@@ -222,13 +226,18 @@ impl<'s> Compiler<'s> {
     fn module_block(&mut self, idx: usize, m: &ast::Module) {
         let kind = self.modules[idx].kind;
         let default = match kind {
-            ModuleKind::Init | ModuleKind::Event => Order::LinearAll,
+            ModuleKind::Init | ModuleKind::Event | ModuleKind::Shutdown => Order::LinearAll,
             _ => Order::Linear,
         };
         let (order, rules) = match &m.program {
             Some(p) => (p.order.as_ref().map_or(default, |o| o.value), &p.rules[..]),
             None => (default, &[][..]),
         };
+        self.nested_order = m
+            .program
+            .as_ref()
+            .and_then(|p| p.nested_order)
+            .unwrap_or(Order::LinearAll);
         if order == Order::Adaptive {
             let span = m
                 .program
@@ -249,6 +258,7 @@ impl<'s> Compiler<'s> {
         let find = |k: ModuleKind, mods: &[ModuleDef]| mods.iter().position(|m| m.kind == k);
         let init = find(ModuleKind::Init, &self.modules);
         let event = find(ModuleKind::Event, &self.modules);
+        let shutdown = find(ModuleKind::Shutdown, &self.modules);
         let main = match find(ModuleKind::Main, &self.modules) {
             Some(m) => m,
             None => {
@@ -294,6 +304,7 @@ impl<'s> Compiler<'s> {
             init,
             main,
             event,
+            shutdown,
             warnings: self.warnings,
             names: Names {
                 macros: self.macros,
@@ -301,6 +312,7 @@ impl<'s> Compiler<'s> {
             },
             uses_newpercept: mentions_newpercept(&ast.modules),
             uses_models,
+            channels: false,
         }))
     }
 
@@ -310,7 +322,9 @@ impl<'s> Compiler<'s> {
         let exit = m.options.exit.as_ref();
         let focus = m.options.focus.as_ref();
         match kind {
-            ModuleKind::Init | ModuleKind::Event => (ExitCondition::Always, Focus::None),
+            ModuleKind::Init | ModuleKind::Event | ModuleKind::Shutdown => {
+                (ExitCondition::Always, Focus::None)
+            }
             ModuleKind::Main => (exit.map_or(ExitCondition::Never, |e| e.value), Focus::None),
             ModuleKind::User => (
                 exit.map_or(ExitCondition::Always, |e| e.value),
@@ -383,7 +397,9 @@ impl<'s> Compiler<'s> {
             ast::RuleBody::Combo(actions) => {
                 Body::Combo(actions.iter().filter_map(|a| self.action(a)).collect())
             }
-            ast::RuleBody::Block(rules) => Body::Block(self.block(module, rules, Order::LinearAll)),
+            ast::RuleBody::Block(rules) => {
+                Body::Block(self.block(module, rules, self.nested_order))
+            }
         };
         let per_goal = match &body {
             Body::Combo(acts) => acts.iter().any(|a| {
@@ -560,6 +576,10 @@ impl<'s> Compiler<'s> {
             K::Print(t) => Act::Print(t.term.clone()),
             K::Log(t) => Act::Log(t.term.clone()),
             K::ExitModule => Act::ExitModule,
+            K::Timing { op, args } => Act::Timing {
+                op: *op,
+                args: args.iter().map(|l| l.term.clone()).collect(),
+            },
             K::Call { name, args } => {
                 let key = (name.name.name().to_string(), args.len());
                 let args = args.iter().map(|l| l.term.clone()).collect();
@@ -694,6 +714,7 @@ pub(crate) fn extend(
         specs: prog.specs.clone(),
         callables: prog.names.callables.clone(),
         select_modules: Vec::new(),
+        nested_order: Order::LinearAll,
     };
     let mut blocks = Vec::new();
     for combo in combos {
@@ -737,8 +758,10 @@ pub(crate) fn extend(
             init: prog.init,
             main: prog.main,
             event: prog.event,
+            shutdown: prog.shutdown,
             warnings: Vec::new(),
             uses_newpercept: prog.uses_newpercept,
+            channels: prog.channels,
             // A test condition about other agents needs their models kept too.
             uses_models: prog.uses_models || conds.iter().any(|c| about_others(c)),
             names: prog.names.clone(),

@@ -10,6 +10,7 @@ use super::mental_state::MentalState;
 use super::module::{Frame, ModFrame, RunEnd};
 use super::percepts::PerceptTypes;
 use super::program::Program;
+use super::timing::Timing;
 use super::trace::{Event, TraceLevel};
 use super::watch::{Observed, Watcher};
 use crate::term::Term;
@@ -132,6 +133,8 @@ pub struct Core {
     pub unsettled: bool,
     /// Rules (`file:line label`) already warned about for a truncated `if` condition.
     pub truncated_rules: BTreeSet<String>,
+    /// Sleep, timers and channel subscriptions (modular GOAL).
+    pub timing: Timing,
 }
 
 impl Core {
@@ -183,6 +186,22 @@ impl Core {
             )));
         }
         Ok(())
+    }
+
+    /// Applies a percept batch to the percept base and records what changed.
+    pub fn perceive(&mut self, percepts: &[Term], types: &PerceptTypes, keep_batch: bool) {
+        let ch = self.ms.percepts.apply(percepts, types, keep_batch);
+        let record = self.level >= TraceLevel::Changes;
+        for p in ch.removed.iter().filter(|_| record) {
+            self.event(Event::PerceptRemoved {
+                percept: p.to_string(),
+            });
+        }
+        for p in ch.added.iter().filter(|_| record) {
+            self.event(Event::PerceptAdded {
+                percept: p.to_string(),
+            });
+        }
     }
 
     /// Records several events.
@@ -261,6 +280,7 @@ impl Agent {
                 watcher: None,
                 unsettled: false,
                 truncated_rules: BTreeSet::new(),
+                timing: Timing::default(),
             },
             types: config.percept_types,
             cycle: 0,
@@ -372,6 +392,25 @@ impl Agent {
                 ..CycleOutput::default()
             };
         }
+        // Sleep and timers (modular GOAL): a sleeping agent only perceives; timers add their
+        // percepts to the batch; messages that came during sleep arrive when it wakes.
+        let (mut batch, mut held) = (None, None);
+        if self.core.timing.busy() {
+            let now = self.core.now_ms();
+            if self.core.timing.asleep(now, messages) {
+                self.core.out = CycleOutput::default();
+                self.core
+                    .perceive(percepts, &self.types, self.program.uses_newpercept);
+                return std::mem::take(&mut self.core.out);
+            }
+            held = self.core.timing.wake_messages(messages);
+            let due = self.core.timing.due(now);
+            if !due.is_empty() {
+                batch = Some([percepts, &due].concat());
+            }
+        }
+        let percepts = batch.as_deref().unwrap_or(percepts);
+        let messages = held.as_deref().unwrap_or(messages);
         self.cycle += 1;
         self.core.out = CycleOutput::default();
         let quota_end = self
@@ -387,7 +426,10 @@ impl Agent {
         self.core.event(Event::CycleStart { cycle: self.cycle });
         match self.run_cycle(percepts, messages) {
             Ok(None) => {}
-            Ok(Some(reason)) => self.stop(reason),
+            Ok(Some(reason)) => {
+                let reason = self.shut_down(reason);
+                self.stop(reason)
+            }
             Err(e) => {
                 self.core.event(Event::Error {
                     message: e.to_string(),
@@ -412,6 +454,7 @@ impl Agent {
             && out.env_actions.is_empty()
             && out.messages.is_empty()
             && out.printed.is_empty()
+            && !self.core.timing.busy()
             && self.chance() == self.chance_before_main;
         self.core.out.waiting = self.waiting;
         std::mem::take(&mut self.core.out)
@@ -450,21 +493,7 @@ impl Agent {
     ) -> Result<Option<StopReason>, RuntimeError> {
         let prog = self.program.clone();
         let core = &mut self.core;
-        let ch = core
-            .ms
-            .percepts
-            .apply(percepts, &self.types, prog.uses_newpercept);
-        let record = core.level >= TraceLevel::Changes;
-        for p in ch.removed.iter().filter(|_| record) {
-            core.event(Event::PerceptRemoved {
-                percept: p.to_string(),
-            });
-        }
-        for p in ch.added.iter().filter(|_| record) {
-            core.event(Event::PerceptAdded {
-                percept: p.to_string(),
-            });
-        }
+        core.perceive(percepts, &self.types, prog.uses_newpercept);
         if core
             .receive(messages)
             .map_err(|e| core.error(&prog, None, e))?
@@ -517,6 +546,24 @@ impl Agent {
                 Ok(None)
             }
             RunEnd::Finished => Ok(Some(StopReason::MainExited)),
+        }
+    }
+
+    /// Runs the shutdown module (modular GOAL), if any, once before the agent stops because
+    /// its main module exited; an error there is the reason the agent stops instead.
+    fn shut_down(&mut self, reason: StopReason) -> StopReason {
+        let prog = self.program.clone();
+        match (prog.shutdown, &reason) {
+            (Some(m), StopReason::MainExited) => match self.run_once(&prog, m) {
+                Ok(()) => reason,
+                Err(e) => {
+                    self.core.event(Event::Error {
+                        message: e.to_string(),
+                    });
+                    StopReason::Error(e)
+                }
+            },
+            _ => reason,
         }
     }
 

@@ -7,6 +7,7 @@ use super::cycle::Core;
 use super::error::Fault;
 use super::mailbox::{received, sent, Message};
 use super::program::Receivers;
+use super::timing::CHANNEL;
 use super::trace::{Event, TraceLevel};
 use crate::syntax::ast::Mood;
 use crate::term::{well_known as wk, Subst, Term};
@@ -66,13 +67,14 @@ impl Core {
         Ok(names)
     }
 
-    /// `send` / `sendonce`.
+    /// `send` / `sendonce`; with `channels`, a receiver name that is no agent is a channel.
     pub fn send(
         &mut self,
         to: &Receivers,
         mood: Mood,
         content: &Term,
         once: bool,
+        channels: bool,
         s: &Subst,
     ) -> Result<Outcome, Fault> {
         let c = s.apply(content);
@@ -86,6 +88,10 @@ impl Core {
         let record = self.level >= TraceLevel::Changes;
         let mut ev = Vec::new();
         for r in self.receivers(to, s)? {
+            if !self.known.contains(&r) && channels {
+                self.to_channel(&r, &wrapped, &mut ev);
+                continue;
+            }
             if !self.known.contains(&r) {
                 ev.push(Event::Warning {
                     message: format!("message {wrapped} to unknown agent {r} dropped"),
@@ -127,14 +133,37 @@ impl Core {
         Ok(Outcome::Done { real: true })
     }
 
+    /// A message to channel `c`: sent to every agent marked with the channel; each keeps it
+    /// only when subscribed (`timing.rs`), so the sender needs no one's subscriptions.
+    fn to_channel(&mut self, c: &str, wrapped: &Term, ev: &mut Vec<Event>) {
+        if self.level >= TraceLevel::Changes {
+            ev.push(Event::MessageSent {
+                to: c.to_string(),
+                content: wrapped.to_string(),
+            });
+        }
+        let marked = Term::compound(CHANNEL, vec![Term::atom(c), wrapped.clone()]);
+        for r in self.known.names() {
+            self.out.messages.push(Message {
+                sender: self.name.clone(),
+                receiver: r.clone(),
+                content: marked.clone(),
+            });
+        }
+    }
+
     /// Stores incoming messages as `received(Sender, Content)` and updates the senders' mental
     /// models; true when there were any.
     pub fn receive(&mut self, messages: &[Message]) -> Result<bool, Fault> {
         let record = self.level >= TraceLevel::Changes;
         let mut ev = Vec::new();
         for m in messages {
-            self.ms.update_model(&m.sender, &m.content)?;
-            let f = received(&Term::atom(&m.sender), &m.content);
+            // A channel message counts only when this agent subscribed to the channel.
+            let Some(content) = self.timing.accept(&m.content) else {
+                continue;
+            };
+            self.ms.update_model(&m.sender, &content)?;
+            let f = received(&Term::atom(&m.sender), &content);
             if record {
                 if self.ms.mailbox.insert(f.clone()) {
                     ev.push(Event::MailAdded {

@@ -39,6 +39,7 @@ pub mod module;
 pub mod percepts;
 pub mod program;
 pub mod rule;
+pub mod timing;
 pub mod trace;
 pub mod watch;
 

@@ -14,6 +14,7 @@ pub enum ModuleKind {
     Init,
     Main,
     Event,
+    Shutdown,
     User,
 }
 
@@ -147,6 +148,11 @@ pub enum Act {
         spec: usize,
         args: Vec<Term>,
     },
+    /// `sleep`, timers and channels (modular GOAL).
+    Timing {
+        op: ast::TimingOp,
+        args: Vec<Term>,
+    },
 }
 
 /// A user action specification.
@@ -172,12 +178,17 @@ pub struct Program {
     pub init: Option<usize>,
     pub main: usize,
     pub event: Option<usize>,
+    /// Modular GOAL's shutdown module, run once when the agent stops.
+    pub shutdown: Option<usize>,
     /// Warnings found while compiling.
     pub warnings: Vec<Diagnostic>,
     /// Some query mentions `newpercept` (so the raw batch must be kept as facts).
     pub uses_newpercept: bool,
     /// Some condition queries other agents' mental models (so messages must update them).
     pub uses_models: bool,
+    /// A modular program: a send to a name that is no agent goes to that channel's subscribers
+    /// (a 2014 program drops it with a warning).
+    pub channels: bool,
     /// Macros and callable names, kept to compile code from outside the program
     /// ([`Program::extend`]).
     pub(crate) names: super::compile::Names,

@@ -156,7 +156,12 @@ pub fn load(name_or_path: &str) -> Result<Map, Vec<Diagnostic>> {
             name_or_path,
             0..0,
         )
-        .with_hint(format!("built-in maps: {}", builtin_names().join(", ")))]
+        .with_hint(
+            match crate::suggest::closest(name_or_path, builtin_names()) {
+                Some(m) => format!("did you mean the built-in map `{m}`?"),
+                None => format!("built-in maps: {}", builtin_names().join(", ")),
+            },
+        )]
     })?;
     if name_or_path.to_ascii_lowercase().ends_with(".xml") {
         super::xml::import(&text, name_or_path)

@@ -1,27 +1,5 @@
-//! "Did you mean" for action and percept names: the closest known `name/arity`.
-
-/// Edit distance between two short names (case differences count half, as a typo in case is
-/// the most common slip: `goto` for `goTo`).
-fn distance(a: &str, b: &str) -> usize {
-    let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
-    let mut prev: Vec<usize> = (0..=b.len()).map(|j| j * 2).collect();
-    for (i, ca) in a.iter().enumerate() {
-        let mut row = vec![(i + 1) * 2];
-        for (j, cb) in b.iter().enumerate() {
-            let subst = if ca == cb {
-                0
-            } else if ca.eq_ignore_ascii_case(cb) {
-                1
-            } else {
-                2
-            };
-            let v = (prev[j] + subst).min(prev[j + 1] + 2).min(row[j] + 2);
-            row.push(v);
-        }
-        prev = row;
-    }
-    prev[b.len()]
-}
+//! "Did you mean" for action and percept names written `name/arity`, through the shared
+//! [`crate::suggest`].
 
 /// The known `name/arity` closest to `name/arity`: same name in another case or arity, or a
 /// name within a small edit distance. `None` when nothing is close.
@@ -32,35 +10,13 @@ pub fn did_you_mean<'k>(name: &str, arity: usize, known: &[&'k str]) -> Option<&
             None => (k, 0),
         }
     };
-    // Only short names are compared (the table is tiny and names are identifiers).
-    if name.len() > 64 {
-        return None;
-    }
-    let limit = 2 * (1 + name.len() / 4);
-    known
-        .iter()
-        .map(|k| {
-            let (n, a) = split(k);
-            let arity_cost = usize::from(a != arity);
-            (distance(name, n) * 2 + arity_cost, *k)
-        })
-        .filter(|(d, _)| *d <= limit * 2 + 1)
-        .min_by(|x, y| x.0.cmp(&y.0).then(x.1.cmp(y.1)))
-        .map(|(_, k)| k)
+    let (n, a) = crate::suggest::closest_arity(name, arity, known.iter().map(|k| split(k)))?;
+    known.iter().copied().find(|k| split(k) == (n, a))
 }
 
 /// The name among `known` closest to `name` (a place, a robot), within a small edit distance.
 pub fn closest<'k>(name: &str, known: impl IntoIterator<Item = &'k str>) -> Option<&'k str> {
-    if name.len() > 64 {
-        return None;
-    }
-    let limit = 2 * (1 + name.len() / 4);
-    known
-        .into_iter()
-        .map(|k| (distance(name, k), k))
-        .filter(|(d, _)| *d <= limit)
-        .min_by(|x, y| x.0.cmp(&y.0).then(x.1.cmp(y.1)))
-        .map(|(_, k)| k)
+    crate::suggest::closest(name, known)
 }
 
 /// The failure reason for an action the environment does not know, with a suggestion.

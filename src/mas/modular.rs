@@ -69,20 +69,6 @@ pub fn load(path: &Path, text: &str) -> Result<MasSystem, Vec<Problem>> {
                 warnings.push(p);
             }
         }
-        for (name, span) in &build.unsupported {
-            let d = Diagnostic::error(
-                "E0600",
-                format!("`{name}` cannot be run by this runtime yet"),
-                file.clone(),
-                span.clone(),
-            )
-            .with_hint("remove the action; see docs/modular-goal.md for what is supported");
-            let (d, text) = build.sources.localize(d);
-            errors.push(Problem {
-                diagnostic: d,
-                source: text,
-            });
-        }
         if !errors.is_empty() {
             problems.extend(errors);
             continue;
@@ -100,6 +86,7 @@ pub fn load(path: &Path, text: &str) -> Result<MasSystem, Vec<Problem>> {
                     }
                     localize_lines(p, &build.sources);
                     p.file = main_file.clone();
+                    p.channels = true;
                 }
                 files.insert(agent.name.value.clone(), main_file);
                 programs.insert(agent.name.value.clone(), prog);

@@ -51,6 +51,9 @@ fn action_pattern(a: &Action) -> Term {
         ActionKind::Call { name, args } => {
             Term::compound(name.name, args.iter().map(|l| l.term.clone()).collect())
         }
+        ActionKind::Timing { op, args } => {
+            Term::compound(op.name(), args.iter().map(|l| l.term.clone()).collect())
+        }
         ActionKind::BuiltinModule(b) => Term::atom(match b {
             BuiltinModule::Init => "init",
             BuiltinModule::Main => "main",

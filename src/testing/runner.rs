@@ -41,6 +41,7 @@ impl Default for TestOptions {
 }
 
 /// One agent's part of a launch: its name, the test's name and the sections to run.
+#[derive(Clone)]
 struct Job<'a> {
     agent: String,
     test: String,
@@ -144,7 +145,8 @@ struct Ctx<'a> {
 /// the tested agents, step them while a section runs, and end the run when every test is over.
 struct Tests<'a, 'j> {
     ctx: &'a Ctx<'a>,
-    jobs: &'j [Job<'j>],
+    /// The planned jobs, then one per agent launched from a definition a job names.
+    jobs: Vec<Job<'j>>,
     /// Per agent index: the job it runs and its controller.
     controllers: BTreeMap<usize, (usize, Controller)>,
     /// Reports decided before the run (compile errors).
@@ -154,6 +156,30 @@ struct Tests<'a, 'j> {
     last_warning: String,
     timeout: Option<Duration>,
     max_ticks: u64,
+}
+
+impl Tests<'_, '_> {
+    /// (A) test files name agent definitions (`robot { do main. }`): an agent launched from
+    /// a definition that a job names gets its own copy of that job.
+    fn definition_job(&mut self, name: &str, program: &Arc<Program>) -> Option<usize> {
+        if crate::syntax::modular::test2g::is_classic(self.ctx.source) {
+            return None;
+        }
+        let programs = &self.ctx.system.programs;
+        let t = self.jobs.iter().position(|j| {
+            programs
+                .get(&j.agent)
+                .is_some_and(|p| Arc::ptr_eq(p, program))
+        })?;
+        let mut job = self.jobs[t].clone();
+        job.agent = name.to_string();
+        // The definition's own job is covered by the agents launched from it.
+        self.launched[t] = true;
+        self.jobs.push(job);
+        self.reports.push(None);
+        self.launched.push(false);
+        Some(self.jobs.len() - 1)
+    }
 }
 
 impl Observer for Tests<'_, '_> {
@@ -167,7 +193,10 @@ impl Observer for Tests<'_, '_> {
         program: &Arc<Program>,
         config: &AgentConfig,
     ) -> Option<Agent> {
-        let k = self.jobs.iter().position(|j| j.agent == name)?;
+        let k = match self.jobs.iter().position(|j| j.agent == name) {
+            Some(k) => k,
+            None => self.definition_job(name, program)?,
+        };
         self.launched[k] = true;
         let (file, source) = (self.ctx.file, self.ctx.source);
         let config = AgentConfig {
@@ -247,7 +276,7 @@ fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport
     };
     let mut tests = Tests {
         ctx,
-        jobs,
+        jobs: jobs.to_vec(),
         controllers: BTreeMap::new(),
         reports: vec![None; jobs.len()],
         launched: vec![false; jobs.len()],
@@ -266,6 +295,7 @@ fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport
         }
     };
     let mut reports = std::mem::take(&mut tests.reports);
+    let jobs = std::mem::take(&mut tests.jobs);
     for (k, j) in jobs.iter().enumerate() {
         if reports[k].is_none() && !tests.launched[k] {
             let m = format!("agent `{}` was not launched by {}", j.agent, test.mas.value);

@@ -232,6 +232,10 @@ impl Dumper<'_> {
             ActionKind::ExitModule => "exit-module".to_string(),
             ActionKind::Call { name, args } => format!("call {}", call(name, args)),
             ActionKind::BuiltinModule(m) => format!("module {m:?}"),
+            ActionKind::Timing { op, args } => {
+                let ts: Vec<String> = args.iter().map(|a| a.term.to_string()).collect();
+                format!("{}({})", op.name(), ts.join(", "))
+            }
         };
         self.line(ind, &text, &a.span);
     }

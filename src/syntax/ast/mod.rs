@@ -59,6 +59,8 @@ pub enum ModuleKind {
     Init,
     Main,
     Event,
+    /// Modular GOAL's shutdown module: one pass when the agent stops.
+    Shutdown,
     /// `module name(P1, ..., Pn)`; parameters should be variables (the validator checks).
     User {
         name: Ident,
@@ -158,6 +160,9 @@ pub struct Module {
 #[derive(Clone, Debug, PartialEq)]
 pub struct ProgramSection {
     pub order: Option<Spanned<Order>>,
+    /// Order of nested `{ }` rule blocks; `None` is `linearall` (modular files inherit the
+    /// file's explicit `order`).
+    pub nested_order: Option<Order>,
     pub macros: Vec<Macro>,
     pub rules: Vec<Rule>,
     pub span: Span,
@@ -347,6 +352,39 @@ pub enum ActionKind {
     },
     /// `init`, `main` or `event` used as an action.
     BuiltinModule(BuiltinModule),
+    /// Modular GOAL's `sleep`, timers and channels.
+    Timing {
+        op: TimingOp,
+        args: Vec<Located>,
+    },
+}
+
+/// The built-in actions of modular GOAL about time and channels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TimingOp {
+    /// `sleep(Ms)`.
+    Sleep,
+    /// `starttimer(Name, IntervalMs, DurationMs)`.
+    StartTimer,
+    /// `canceltimer(Name)`.
+    CancelTimer,
+    /// `subscribe(Channel, ...)`.
+    Subscribe,
+    /// `unsubscribe(Channel, ...)`.
+    Unsubscribe,
+}
+
+impl TimingOp {
+    /// The action's name as written.
+    pub fn name(self) -> &'static str {
+        match self {
+            TimingOp::Sleep => "sleep",
+            TimingOp::StartTimer => "starttimer",
+            TimingOp::CancelTimer => "canceltimer",
+            TimingOp::Subscribe => "subscribe",
+            TimingOp::Unsubscribe => "unsubscribe",
+        }
+    }
 }
 
 /// `@int` or `@env`.
@@ -388,6 +426,7 @@ impl Module {
             ModuleKind::Init => "init",
             ModuleKind::Main => "main",
             ModuleKind::Event => "event",
+            ModuleKind::Shutdown => "shutdown",
             ModuleKind::User { name, .. } => name.name.name(),
         }
     }

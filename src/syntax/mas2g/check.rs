@@ -81,7 +81,10 @@ pub fn check_files(mas: &MasFile, base_dir: &Path) -> Vec<Diagnostic> {
                 Some(&i) => launched[i] = true,
                 None => {
                     let known: Vec<&str> = refs.keys().map(String::as_str).collect();
-                    let hint = if known.is_empty() {
+                    let near = crate::suggest::closest(&inst.reference.value, known.clone());
+                    let hint = if let Some(k) = near {
+                        format!("did you mean `{k}`?")
+                    } else if known.is_empty() {
                         "declare the agent file in the `agentfiles` section".to_string()
                     } else {
                         format!("known agent files: {}", known.join(", "))

@@ -15,7 +15,7 @@ use super::lower::{
     clear_messages, environment_actions, local_macros, mentions, percept_declaration, query,
 };
 use super::mas::{AgentDef, AgentItem, Role};
-use super::pl::{blank_dynamic, kr_clauses};
+use super::pl::{blank_dynamic, declared, kr_clauses};
 use super::sources::SourceSet;
 use crate::diag::{Diagnostic, Span};
 use crate::syntax::ast::*;
@@ -30,8 +30,8 @@ pub struct AgentBuild {
     pub sources: SourceSet,
     /// Problems found (spans in the shared text; see [`SourceSet::localize`]).
     pub diagnostics: Vec<Diagnostic>,
-    /// Actions that parse but that this runtime cannot run (name and span).
-    pub unsupported: Vec<(&'static str, Span)>,
+    /// Predicates the `.pl` files declare `dynamic` (querying them is never an error).
+    pub declared: BTreeSet<(String, usize)>,
 }
 
 struct Loaded {
@@ -52,6 +52,7 @@ struct Assembler<'a> {
     knowledge: Vec<Located>,
     beliefs: Vec<Located>,
     goals: Vec<Located>,
+    declared: BTreeSet<(String, usize)>,
     agent: &'a AgentDef,
 }
 
@@ -76,6 +77,7 @@ pub fn assemble(
         knowledge: Vec::new(),
         beliefs: Vec::new(),
         goals: Vec::new(),
+        declared: BTreeSet::new(),
         agent,
     };
     // The MAS text comes first: spans of what the lowering adds point at the agent definition.
@@ -100,7 +102,7 @@ pub fn assemble(
             }
             match resolve(base, &reference.value, &["mod2g"]) {
                 Some(p) => a.load_module(&p, Some(role.value), reference.span.clone()),
-                None => a.not_found(&reference.value, "mod2g", reference.span.clone()),
+                None => a.not_found(base, &reference.value, "mod2g", reference.span.clone()),
             }
         }
     }
@@ -138,6 +140,30 @@ pub fn resolve(dir: &Path, r: &str, exts: &[&str]) -> Option<PathBuf> {
         .find(|q| q.is_file())
 }
 
+/// The file of `dir` with extension `ext` whose name (without the extension) is closest to
+/// the reference `r`.
+pub fn near_file(dir: &Path, r: &str, ext: &str) -> Option<String> {
+    let (sub, name) = match r.rsplit_once('/') {
+        Some((d, n)) => (dir.join(d), n),
+        None => (dir.to_path_buf(), r),
+    };
+    let mut stems: Vec<String> = std::fs::read_dir(&sub)
+        .ok()?
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .filter(|p| p.extension().and_then(|e| e.to_str()) == Some(ext))
+        .filter_map(|p| p.file_stem().and_then(|s| s.to_str()).map(str::to_string))
+        .take(10_000)
+        .collect();
+    // Directory order depends on the file system: compare in name order.
+    stems.sort();
+    let near = crate::suggest::closest(name, stems.iter().map(String::as_str))?;
+    let prefix = r
+        .rsplit_once('/')
+        .map_or(String::new(), |(d, _)| format!("{d}/"));
+    Some(format!("{prefix}{near}"))
+}
+
 fn canonical(p: &Path) -> PathBuf {
     p.canonicalize().unwrap_or_else(|_| p.to_path_buf())
 }
@@ -149,18 +175,16 @@ impl Assembler<'_> {
             .push(Diagnostic::error(code, msg, file, span).with_hint(hint));
     }
 
-    fn warning(&mut self, code: &str, msg: impl Into<String>, span: Span, hint: &str) {
-        let file = self.sources.segments[0].name.clone();
-        self.diags
-            .push(Diagnostic::warning(code, msg, file, span).with_hint(hint));
-    }
-
-    fn not_found(&mut self, r: &str, ext: &str, span: Span) {
+    fn not_found(&mut self, dir: &Path, r: &str, ext: &str, span: Span) {
+        let hint = match near_file(dir, r, ext) {
+            Some(f) => format!("did you mean `{f}`?"),
+            None => "references are relative to the file that contains the use clause".into(),
+        };
         self.error(
             "E0607",
             format!("`{r}` not found (looked for `{r}` and `{r}.{ext}`)"),
             span,
-            "references are relative to the file that contains the use clause",
+            &hint,
         );
     }
 
@@ -246,7 +270,7 @@ impl Assembler<'_> {
                     let c = case.unwrap_or(UseCase::Knowledge);
                     match resolve(dir, &r.value, &["pl"]) {
                         Some(p) => self.load_kr(&p, c, span),
-                        None => self.not_found(&r.value, "pl", span),
+                        None => self.not_found(dir, &r.value, "pl", span),
                     }
                 }
                 _ if !in_module => self.error(
@@ -257,11 +281,11 @@ impl Assembler<'_> {
                 ),
                 Some(UseCase::Module) => match resolve(dir, &r.value, &["mod2g"]) {
                     Some(p) => self.load_module(&p, None, span),
-                    None => self.not_found(&r.value, "mod2g", span),
+                    None => self.not_found(dir, &r.value, "mod2g", span),
                 },
                 Some(UseCase::ActionSpec) => match resolve(dir, &r.value, &["act2g"]) {
                     Some(p) => self.load_act(&p, span),
-                    None => self.not_found(&r.value, "act2g", span),
+                    None => self.not_found(dir, &r.value, "act2g", span),
                 },
                 Some(UseCase::Mas | UseCase::Planner) => {}
                 None => {
@@ -354,6 +378,8 @@ impl Assembler<'_> {
         let text = blank_dynamic(&self.sources.text[start..end]);
         let (clauses, diags) = Reader::new(name.as_str()).clauses(&text, start);
         self.diags.extend(diags);
+        let raw = &self.sources.text[start..end];
+        self.declared.extend(declared(raw, &clauses));
         for c in kr_clauses(clauses, &name, &mut self.diags) {
             let rule = matches!(c.term.functor(), Some((f, 2)) if f.name() == ":-");
             match case {
@@ -386,24 +412,14 @@ impl Assembler<'_> {
     fn finish(mut self) -> AgentBuild {
         let agent_span = self.agent.span.clone();
         let mut modules: Vec<Module> = Vec::new();
-        let mut unsupported = Vec::new();
         let mut has = BTreeSet::new();
         for l in std::mem::take(&mut self.loaded) {
             let mut m = l.file.module;
-            unsupported.extend(l.file.unsupported.iter().map(|u| (u.name, u.span.clone())));
             match l.role {
                 Some(Role::Init) => m.kind = ModuleKind::Init,
                 Some(Role::Main) => m.kind = ModuleKind::Main,
                 Some(Role::Event) => m.kind = ModuleKind::Event,
-                Some(Role::Shutdown) => {
-                    self.warning(
-                        "W0604",
-                        "the shutdown module is not run by this runtime",
-                        m.head_span.clone(),
-                        "move what it does into the main module",
-                    );
-                    continue;
-                }
+                Some(Role::Shutdown) => m.kind = ModuleKind::Shutdown,
                 None => self.name_check(&m, &l.file.file),
             }
             has.insert(m.name().to_string());
@@ -427,6 +443,7 @@ impl Assembler<'_> {
                 goals: Vec::new(),
                 program: Some(ProgramSection {
                     order: None,
+                    nested_order: None,
                     macros: Vec::new(),
                     rules: Vec::new(),
                     span: span.clone(),
@@ -479,7 +496,7 @@ impl Assembler<'_> {
             program,
             sources: self.sources,
             diagnostics: self.diags,
-            unsupported,
+            declared: self.declared,
         }
     }
 

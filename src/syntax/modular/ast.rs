@@ -64,13 +64,6 @@ pub struct UseClause {
     pub span: Span,
 }
 
-/// An action of a module that this runtime parses but cannot run yet (`sleep`, timers, channels).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Unsupported {
-    pub name: &'static str,
-    pub span: Span,
-}
-
 /// A `.mod2g` file of generation (A) or (B).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ModFile {
@@ -78,8 +71,6 @@ pub struct ModFile {
     pub uses: Vec<UseClause>,
     /// The module; its kind is `User` with the declared name until a MAS gives it a role.
     pub module: Module,
-    /// Actions that parse but do not run in this runtime.
-    pub unsupported: Vec<Unsupported>,
 }
 
 /// An `.act2g` file.

@@ -41,7 +41,6 @@ pub struct MBuilder<'s> {
     pub inner: Builder<'s>,
     /// Macros defined so far (name/arity): a (B) literal with such a name is a macro use.
     macros: BTreeSet<(String, usize)>,
-    pub unsupported: Vec<Unsupported>,
 }
 
 /// A term with the same span for every part (for terms the lowering builds).
@@ -119,7 +118,6 @@ impl<'s> MBuilder<'s> {
         MBuilder {
             inner: Builder::new(src, file),
             macros: BTreeSet::new(),
-            unsupported: Vec::new(),
         }
     }
 
@@ -152,13 +150,10 @@ impl<'s> MBuilder<'s> {
         self.inner.ident(span)
     }
 
-    /// A quoted reference without its quotes.
+    /// A quoted reference (strings joined by `+`) without its quotes.
     pub fn ref_string(&self, span: Span) -> Spanned<String> {
-        let text = &self.src()[span.clone()];
         Spanned {
-            value: text[1..text.len() - 1]
-                .replace("\\\"", "\"")
-                .replace("\\'", "'"),
+            value: super::mas::joined_strings(&self.src()[span.clone()]),
             span,
         }
     }
@@ -224,8 +219,11 @@ impl<'s> MBuilder<'s> {
                 Item::Option(key, value, s) => self.option(&mut options, &mut order, key, value, s),
             }
         }
+        // Nested blocks inherit an explicit `order` of the file (as GOAL's validator copies it).
+        let nested_order = order.as_ref().map(|o| o.value);
         let program = ProgramSection {
             order,
+            nested_order,
             macros,
             rules,
             span: span.clone(),
@@ -503,18 +501,18 @@ impl<'s> MBuilder<'s> {
         Action { kind, span }
     }
 
-    /// `sleep`, `subscribe`, `unsubscribe`, `starttimer`, `canceltimer`: parsed, not run.
-    pub fn unsupported(&mut self, name: &'static str, cspan: Span, span: Span) -> Action {
+    /// `sleep`, `subscribe`, `unsubscribe`, `starttimer`, `canceltimer`.
+    pub fn timing(&mut self, op: TimingOp, cspan: Span, span: Span) -> Action {
         let args = self.args(cspan);
-        let (min, max) = match name {
-            "sleep" | "canceltimer" => (1, 1),
-            "starttimer" => (3, 3),
-            _ => (1, usize::MAX),
+        let (min, max) = match op {
+            TimingOp::Sleep | TimingOp::CancelTimer => (1, 1),
+            TimingOp::StartTimer => (3, 3),
+            TimingOp::Subscribe | TimingOp::Unsubscribe => (1, usize::MAX),
         };
         if args.len() < min || args.len() > max {
             self.error(
                 "E0603",
-                format!("`{name}` with {} arguments", args.len()),
+                format!("`{}` with {} arguments", op.name(), args.len()),
                 span.clone(),
                 if min == max {
                     "check the number of arguments"
@@ -523,18 +521,8 @@ impl<'s> MBuilder<'s> {
                 },
             );
         }
-        self.unsupported.push(Unsupported {
-            name,
-            span: span.clone(),
-        });
         Action {
-            kind: ActionKind::Call {
-                name: Ident {
-                    name: Sym::intern(name),
-                    span: span.start..span.start + name.len(),
-                },
-                args,
-            },
+            kind: ActionKind::Timing { op, args },
             span,
         }
     }

@@ -25,33 +25,30 @@ pub fn check_agent(
 ) -> (AgentBuild, Vec<Diagnostic>) {
     let build = assemble(&mas.file, mas_text, base, agent, mas.generation);
     let mut diags = build.diagnostics.clone();
-    for (name, span) in &build.unsupported {
-        diags.push(
-            Diagnostic::warning(
-                "W0606",
-                format!("`{name}` is read but this runtime cannot run it yet"),
-                &mas.file,
-                span.clone(),
-            )
-            .with_hint("`goal run` stops with an error at load time; see docs/modular-goal.md"),
-        );
-    }
     if !diags.iter().any(Diagnostic::is_error) {
         let mas_end = build.sources.segments[0].end;
         for d in crate::syntax::validate::validate(&build.program, None) {
             // What the lowering added points into the MAS file: its warnings are not the user's.
             // `newpercept/1` (this cycle's raw percepts) is provided by the runtime.
             let runtime = d.code == "E0121" && d.message.starts_with("`newpercept/1`");
-            // Unsupported actions are reported once, as such (not as undefined actions).
-            let unsupported = build
-                .unsupported
-                .iter()
-                .any(|(_, s)| s.start <= d.span.start && d.span.end <= s.end);
-            if runtime || unsupported || (d.span.start <= mas_end && !d.is_error()) {
+            // A predicate declared `:- dynamic` is a belief that may not exist yet (GOAL too).
+            let dynamic = d.code == "E0121"
+                && build
+                    .declared
+                    .iter()
+                    .any(|(n, a)| d.message.starts_with(&format!("`{n}/{a}`")));
+            if dynamic {
+                continue;
+            }
+            if runtime || (d.span.start <= mas_end && !d.is_error()) {
                 continue;
             }
             // (B) a .pl file holds facts and rules of one predicate (database and knowledge).
             if mas.generation == Generation::Marbel && d.code == "E0122" {
+                continue;
+            }
+            // `p/1.` lines after `:- dynamic` are facts of '/'/2, already warned about (W0609).
+            if d.code == "W0110" && d.message.starts_with("`//2`") {
                 continue;
             }
             diags.push(d);
@@ -128,7 +125,12 @@ fn mas_checks(mas: &ModMas) -> Vec<Diagnostic> {
                         f.clone(),
                         i.reference.span.clone(),
                     )
-                    .with_hint(format!("defined: {}", defined.join(", "))),
+                    .with_hint(
+                        match crate::suggest::closest(&i.reference.value, defined.clone()) {
+                            Some(d) => format!("did you mean `{d}`?"),
+                            None => format!("defined: {}", defined.join(", ")),
+                        },
+                    ),
                 );
             }
         }
@@ -203,21 +205,15 @@ pub fn check_module_file(path: &Path, text: &str, gen: Generation) -> Vec<Diagno
                         file.clone(),
                         r.span.clone(),
                     )
-                    .with_hint("references are relative to this file's directory"),
+                    .with_hint(
+                        match super::assemble::near_file(dir, &r.value, exts[0]) {
+                            Some(f) => format!("did you mean `{f}`?"),
+                            None => "references are relative to this file's directory".into(),
+                        },
+                    ),
                 );
             }
         }
-    }
-    for u in &m.unsupported {
-        diags.push(
-            Diagnostic::warning(
-                "W0606",
-                format!("`{}` is read but this runtime cannot run it yet", u.name),
-                file.clone(),
-                u.span.clone(),
-            )
-            .with_hint("`goal run` stops with an error at load time"),
-        );
     }
     if gen == Generation::Modular {
         diags.extend(undefined_macros(&m.module, &file));

@@ -25,6 +25,11 @@ enum After {
     Condition,
 }
 
+/// True for a byte of a name: ASCII letters, digits, `_`, and bytes of non-ASCII characters.
+fn is_name_byte(c: u8) -> bool {
+    c.is_ascii_alphanumeric() || c == b'_' || c >= 0x80
+}
+
 /// The token stream of one modular file.
 pub struct ModLexer<'s> {
     src: &'s str,
@@ -136,7 +141,7 @@ impl<'s> ModLexer<'s> {
         let b = self.src.as_bytes();
         let start = self.pos;
         let mut i = start;
-        while i < self.end && (b[i].is_ascii_alphanumeric() || b[i] == b'_') {
+        while i < self.end && is_name_byte(b[i]) {
             i += 1;
         }
         let rest = self.src[i..self.end].trim_start();
@@ -163,10 +168,10 @@ impl<'s> ModLexer<'s> {
                 b')' | b']' | b'}' => depth -= 1,
                 _ => {}
             }
-            let word_start = p == 0 || !(b[p - 1].is_ascii_alphanumeric() || b[p - 1] == b'_');
+            let word_start = p == 0 || !is_name_byte(b[p - 1]);
             if depth == 0 && word_start && c.is_ascii_alphabetic() {
                 let mut q = p;
-                while q < self.end && (b[q].is_ascii_alphanumeric() || b[q] == b'_') {
+                while q < self.end && is_name_byte(b[q]) {
                     q += 1;
                 }
                 if matches!(&self.src[p..q], "then" | "do") {
@@ -252,7 +257,7 @@ impl<'s> ModLexer<'s> {
         if t == MTok::Ident
             && b.get(end) == Some(&b'.')
             && end + 1 < self.end
-            && b[end + 1].is_ascii_alphabetic()
+            && super::mas::starts_name(b[end + 1])
         {
             return Some((start, MTok::PathName, end));
         }

@@ -62,6 +62,8 @@ pub enum MasTok {
     Comma,
     #[token("/")]
     Slash,
+    #[token("+")]
+    Plus,
     #[token("{")]
     LBrace,
     #[token("}")]
@@ -74,7 +76,7 @@ pub enum MasTok {
     LBracket,
     #[token("]")]
     RBracket,
-    #[regex("[A-Za-z_][A-Za-z0-9_]*")]
+    #[regex(r"[\p{L}_][\p{L}\p{N}_]*")]
     Ident,
     /// A name directly followed by `.` and a letter: part of a dotted reference.
     PathName,
@@ -100,6 +102,41 @@ fn block_comment(lex: &mut logos::Lexer<MasTok>) -> logos::FilterResult<(), ()> 
     }
 }
 
+/// True for a byte that can start a name: an ASCII letter or `_`, or the first byte of a
+/// non-ASCII character (Unicode letters).
+pub fn starts_name(c: u8) -> bool {
+    c.is_ascii_alphabetic() || c == b'_' || c >= 0x80
+}
+
+/// The text of one or more quoted strings joined by `+` (`"a" + "b"` is `ab`), without quotes
+/// and escapes.
+pub fn joined_strings(text: &str) -> String {
+    let mut out = String::new();
+    let mut chars = text.chars();
+    while let Some(c) = chars.next() {
+        if c != '"' && c != '\'' {
+            continue;
+        }
+        let quote = c;
+        while let Some(d) = chars.next() {
+            match d {
+                // `\"` and `\\` stand for the character; other backslashes stay (paths).
+                '\\' => match chars.next() {
+                    Some(e) if e == quote || e == '\\' => out.push(e),
+                    Some(e) => {
+                        out.push('\\');
+                        out.push(e);
+                    }
+                    None => out.push('\\'),
+                },
+                d if d == quote => break,
+                d => out.push(d),
+            }
+        }
+    }
+    out
+}
+
 /// Deepest nesting of `(`/`[` in parameter values.
 const MAX_NESTING: usize = 32;
 
@@ -116,7 +153,7 @@ fn tokens(src: &str, file: &str) -> (Vec<(usize, MasTok, usize)>, Vec<Diagnostic
             Ok(mut tok) => {
                 if tok == MasTok::Ident
                     && b.get(span.end) == Some(&b'.')
-                    && b.get(span.end + 1).is_some_and(|c| c.is_ascii_alphabetic())
+                    && b.get(span.end + 1).is_some_and(|c| starts_name(*c))
                 {
                     tok = MasTok::PathName;
                 }
@@ -296,13 +333,9 @@ impl<'s> MasBuilder<'s> {
         Spanned::new(self.src[span.clone()].to_string(), span)
     }
 
-    /// A quoted string without quotes.
+    /// Quoted strings (joined by `+`) without quotes.
     pub fn string(&self, span: Span) -> Spanned<String> {
-        let t = &self.src[span.clone()];
-        Spanned::new(
-            t[1..t.len() - 1].replace("\\\"", "\"").replace("\\'", "'"),
-            span,
-        )
+        Spanned::new(joined_strings(&self.src[span.clone()]), span)
     }
 
     /// A dotted reference `a.b` as the path `a/b`.

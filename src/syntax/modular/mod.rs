@@ -49,7 +49,6 @@ pub fn parse_mod2g(
             file: file.to_string(),
             uses,
             module,
-            unsupported: std::mem::take(&mut b.unsupported),
         }),
         Err(e) => {
             diags.push(build::syntax_error(e, text, file));

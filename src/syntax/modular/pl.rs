@@ -52,6 +52,46 @@ pub fn kr_clauses(clauses: Vec<Located>, file: &str, diags: &mut Vec<Diagnostic>
 /// `:- dynamic p/1, q/2.` directives blanked out (same length, so spans stay right): GOAL's fixed
 /// operator table has no `dynamic` operator, and the directives only declare belief predicates.
 pub fn blank_dynamic(text: &str) -> String {
+    let mut out = text.as_bytes().to_vec();
+    for s in dynamic_spans(text) {
+        for x in &mut out[s] {
+            if *x != b'\n' {
+                *x = b' ';
+            }
+        }
+    }
+    // Only ASCII bytes outside quotes were replaced by spaces: still UTF-8.
+    String::from_utf8(out).unwrap_or_else(|_| text.to_string())
+}
+
+/// The predicates `:- dynamic` directives of `text` declare, as name and arity, and those of
+/// `p/1.` lines (a declaration cut off by `.`, which GOAL counts as declared too).
+pub fn declared(text: &str, clauses: &[Located]) -> Vec<(String, usize)> {
+    let mut out = Vec::new();
+    for s in dynamic_spans(text) {
+        let body = text[s].trim_start_matches(|c: char| c == ':' || c == '-' || c.is_whitespace());
+        let body = body.strip_prefix("dynamic").unwrap_or(body);
+        for part in body.split(',') {
+            let p = part.trim_matches(|c: char| "()[]. \t\r\n".contains(c));
+            if let Some((n, a)) = p.rsplit_once('/') {
+                if let Ok(a) = a.trim().parse::<usize>() {
+                    out.push((n.trim().trim_matches('\'').to_string(), a));
+                }
+            }
+        }
+    }
+    for c in clauses {
+        if let (Some((f, 2)), [Term::Atom(n), Term::Int(a)]) = (c.term.functor(), c.term.args()) {
+            if f.name() == "/" && *a >= 0 {
+                out.push((n.name().to_string(), *a as usize));
+            }
+        }
+    }
+    out
+}
+
+/// The byte spans of the `:- dynamic ... .` directives of `text`.
+fn dynamic_spans(text: &str) -> Vec<Span> {
     let b = text.as_bytes();
     let mut walk = crate::syntax::lexer::kr::Significant::new(text, 0, text.len());
     let mut blanks: Vec<Span> = Vec::new();
@@ -83,14 +123,5 @@ pub fn blank_dynamic(text: &str) -> String {
             _ => {}
         }
     }
-    let mut out = text.as_bytes().to_vec();
-    for s in blanks {
-        for x in &mut out[s] {
-            if *x != b'\n' {
-                *x = b' ';
-            }
-        }
-    }
-    // Only ASCII bytes outside quotes were replaced by spaces: still UTF-8.
-    String::from_utf8(out).unwrap_or_else(|_| text.to_string())
+    blanks
 }

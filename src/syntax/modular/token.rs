@@ -146,8 +146,8 @@ pub enum MTok {
     LBrace,
     #[token("}")]
     RBrace,
-    /// A name: a letter or `_`, then letters, digits and `_`.
-    #[regex("[A-Za-z_][A-Za-z0-9_]*")]
+    /// A name: a letter or `_`, then letters, digits and `_` (Unicode letters too).
+    #[regex(r"[\p{L}_][\p{L}\p{N}_]*")]
     Ident,
     /// `"..."` or `'...'` with backslash escapes (the span includes the quotes).
     #[regex(r#""([^"\\\n]|\\.)*""#)]

@@ -99,7 +99,9 @@ pub fn check_ground(test: &MasTest) -> Vec<Diagnostic> {
                 }
             }
             ActionKind::Print(t) | ActionKind::Log(t) => vec![t],
-            ActionKind::Call { args, .. } => args.iter().collect(),
+            ActionKind::Call { args, .. } | ActionKind::Timing { args, .. } => {
+                args.iter().collect()
+            }
             ActionKind::ExitModule | ActionKind::BuiltinModule(_) => vec![],
         };
         let found = terms.into_iter().find_map(|t| {

@@ -4,6 +4,7 @@
 use super::ast::MasTest;
 use crate::diag::Diagnostic;
 use crate::syntax::mas2g;
+use crate::syntax::mas2g::ast::AgentName;
 use std::collections::BTreeSet;
 use std::path::Path;
 
@@ -112,7 +113,21 @@ pub fn check_files(test: &MasTest, base_dir: &Path) -> Vec<Diagnostic> {
     }
     for a in &test.agents {
         for name in &a.agents {
-            if !mas.may_launch(name.name.name()) {
+            // (A) test files may name an agent definition: every agent launched from it.
+            let definition = is_modular
+                && mas
+                    .launch_rules
+                    .iter()
+                    .flat_map(|r| &r.instructions)
+                    .any(|i| i.reference.value == name.name.name());
+            if !definition && !mas.may_launch(name.name.name()) {
+                let launched = launched_names(&mas);
+                let launched = launched.iter().map(String::as_str);
+                let hint = match crate::suggest::closest(name.name.name(), launched) {
+                    Some(n) => format!("did you mean `{n}`?"),
+                    None => "test blocks are named after the agents that the MAS file launches"
+                        .to_string(),
+                };
                 diags.push(
                     Diagnostic::error(
                         "E0306",
@@ -120,7 +135,7 @@ pub fn check_files(test: &MasTest, base_dir: &Path) -> Vec<Diagnostic> {
                         file,
                         name.span.clone(),
                     )
-                    .with_hint("test blocks are named after the agents that the MAS file launches"),
+                    .with_hint(hint),
                 );
             }
         }
@@ -131,4 +146,20 @@ pub fn check_files(test: &MasTest, base_dir: &Path) -> Vec<Diagnostic> {
     let mas_dir = full.parent().unwrap_or(base_dir);
     diags.extend(super::calls::check_calls(test, &mas, mas_dir));
     diags
+}
+
+/// The names the launch rules of `mas` give (up to 100 of each numbered series).
+fn launched_names(mas: &mas2g::ast::MasFile) -> Vec<String> {
+    let mut out = Vec::new();
+    for i in mas.launch_rules.iter().flat_map(|r| &r.instructions) {
+        let base = match &i.name {
+            Some(AgentName::Given(g)) => g.value.as_str(),
+            _ => i.reference.value.as_str(),
+        };
+        match i.count() {
+            0 | 1 => out.push(base.to_string()),
+            n => out.extend((1..=n.min(100)).map(|k| format!("{base}{k}"))),
+        }
+    }
+    out
 }

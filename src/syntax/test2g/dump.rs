@@ -205,5 +205,6 @@ fn action(a: &Action) -> String {
         ActionKind::Call { name, args } if args.is_empty() => name.name.name().to_string(),
         ActionKind::Call { name, args } => format!("{}({})", name.name.name(), terms(args)),
         ActionKind::BuiltinModule(m) => format!("{m:?}").to_lowercase(),
+        ActionKind::Timing { op, args } => format!("{}({})", op.name(), terms(args)),
     }
 }

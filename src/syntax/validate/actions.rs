@@ -166,11 +166,28 @@ fn calls(ctx: &mut Ctx<'_>) {
             arities.sort();
             arities.dedup();
             if arities.is_empty() {
+                let known = ctx
+                    .spec_index
+                    .keys()
+                    .chain(ctx.module_index.keys())
+                    .chain(ctx.imported.specs.iter())
+                    .chain(ctx.imported.modules.iter())
+                    .map(|(n, a)| (n.as_str(), *a));
+                let hint = match crate::suggest::closest_arity(&key.0, key.1, known) {
+                    Some((n, a)) => format!("did you mean `{n}/{a}`?"),
+                    None => format!(
+                        "add an action spec `{}` in an `actionspec` section, or a module of that name",
+                        head(&key)
+                    ),
+                };
                 ctx.error(
                     "E0104",
-                    format!("action or module `{}/{}` is used but never specified", key.0, key.1),
+                    format!(
+                        "action or module `{}/{}` is used but never specified",
+                        key.0, key.1
+                    ),
                     span,
-                    format!("add an action spec `{}` in an `actionspec` section, or a module of that name", head(&key)),
+                    hint,
                 );
             } else {
                 let list: Vec<String> = arities.iter().map(|n| format!("{}/{n}", key.0)).collect();

@@ -75,7 +75,15 @@ pub fn check(ctx: &mut Ctx<'_>) {
             .filter(|(n, _)| *n == key.0)
             .map(|(n, a)| format!("{n}/{a}"))
             .collect();
-        let hint = if others.is_empty() {
+        let known = ctx
+            .macro_index
+            .keys()
+            .chain(ctx.imported.macros.iter())
+            .map(|(n, a)| (n.as_str(), *a));
+        let near = crate::suggest::closest_arity(&key.0, key.1, known);
+        let hint = if let Some((n, a)) = near.filter(|_| others.is_empty()) {
+            format!("did you mean the macro `{n}/{a}`?")
+        } else if others.is_empty() {
             format!(
                 "define it with `#define {}(...) condition.` at the top of a program section",
                 key.0

@@ -60,10 +60,13 @@ pub fn check(ctx: &mut Ctx<'_>) {
         }
         let builtin = matches!(
             m.kind,
-            ModuleKind::Init | ModuleKind::Main | ModuleKind::Event
+            ModuleKind::Init | ModuleKind::Main | ModuleKind::Event | ModuleKind::Shutdown
         );
         if let Some(exit) = &m.options.exit {
-            if matches!(m.kind, ModuleKind::Init | ModuleKind::Event) {
+            if matches!(
+                m.kind,
+                ModuleKind::Init | ModuleKind::Event | ModuleKind::Shutdown
+            ) {
                 ctx.warning(
                     "W0108",
                     format!("the `exit` option of {what} is ignored"),
@@ -112,6 +115,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
         ModuleKind::Init => Some("init"),
         ModuleKind::Main => Some("main"),
         ModuleKind::Event => Some("event"),
+        ModuleKind::Shutdown => Some("shutdown"),
         ModuleKind::User { .. } => None,
     };
     let mut seen = Vec::new();
@@ -157,6 +161,7 @@ pub fn describe(m: &crate::syntax::ast::Module) -> String {
         ModuleKind::Init => "the init module".into(),
         ModuleKind::Main => "the main module".into(),
         ModuleKind::Event => "the event module".into(),
+        ModuleKind::Shutdown => "the shutdown module".into(),
         ModuleKind::User { name, params } => {
             format!("module `{}/{}`", name.name.name(), params.len())
         }

@@ -268,7 +268,7 @@ fn action(ctx: &mut Ctx<'_>, a: &Action, bound: &VarSet, kind: &RuleKind) {
         }
         ActionKind::Print(t) | ActionKind::Log(t) => unbound(ctx, t, bound, kind, false),
         // `_` arguments are reported as E0115 by the action checks.
-        ActionKind::Call { args, .. } => {
+        ActionKind::Call { args, .. } | ActionKind::Timing { args, .. } => {
             for arg in args {
                 unbound(ctx, arg, bound, kind, true);
             }

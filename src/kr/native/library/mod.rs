@@ -51,51 +51,9 @@ pub fn suggest<'a>(
     arity: usize,
     others: impl IntoIterator<Item = (&'a str, usize)>,
 ) -> Option<String> {
-    let limit = match name.chars().count() {
-        0..=3 => 1,
-        4..=7 => 2,
-        _ => 3,
-    };
-    let mut best: Option<(usize, bool, String)> = None;
     let known = known_predicates();
-    let candidates = known.into_iter().chain(others);
-    for (n, a) in candidates {
-        if n == name && a == arity {
-            return None;
-        }
-        let d = edit_distance(name, n);
-        if d > limit {
-            continue;
-        }
-        let key = (d, a != arity, format!("{n}/{a}"));
-        if best
-            .as_ref()
-            .is_none_or(|b| (key.0, key.1, &key.2) < (b.0, b.1, &b.2))
-        {
-            best = Some(key);
-        }
-    }
-    best.map(|(_, _, s)| s)
-}
-
-/// Levenshtein distance between two names (by characters).
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut prev = row[0];
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let cur = row[j + 1];
-            row[j + 1] = if ca == *cb {
-                prev
-            } else {
-                1 + prev.min(cur).min(row[j])
-            };
-            prev = cur;
-        }
-    }
-    row[b.len()]
+    let candidates = known.iter().copied().chain(others);
+    crate::suggest::closest_arity(name, arity, candidates).map(|(n, a)| format!("{n}/{a}"))
 }
 
 #[cfg(test)]
