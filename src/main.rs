@@ -40,6 +40,8 @@ enum Command {
     Prolog(cli::prolog::Args),
     /// Run a benchmark (token rings, reasoning, percept load, idle agents) and print its figures.
     Bench(cli::bench::Args),
+    /// Explain what each rule of an agent did at a tick of a run (a trace or a .mas2g rerun).
+    Why(cli::why::Args),
 }
 
 fn main() -> ExitCode {
@@ -51,5 +53,6 @@ fn main() -> ExitCode {
         Command::Prolog(args) => cli::prolog::main(args),
         Command::Test(args) => cli::test::main(args),
         Command::Bench(args) => cli::bench::main(args),
+        Command::Why(args) => cli::why::main(args),
     }
 }

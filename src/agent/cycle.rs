@@ -132,6 +132,8 @@ pub struct Core {
     pub unsettled: bool,
     /// Rules (`file:line label`) already warned about for a truncated `if` condition.
     pub truncated_rules: BTreeSet<String>,
+    /// Records what the rules do, for `goal why` (`None` in ordinary runs).
+    pub why: Option<super::why::Recorder>,
 }
 
 impl Core {
@@ -261,6 +263,7 @@ impl Agent {
                 watcher: None,
                 unsettled: false,
                 truncated_rules: BTreeSet::new(),
+                why: None,
             },
             types: config.percept_types,
             cycle: 0,
@@ -357,6 +360,11 @@ impl Agent {
         std::mem::replace(&mut self.core.watcher, w)
     }
 
+    /// Installs (or removes, with `None`) a recorder of what the rules do in each cycle.
+    pub fn set_why(&mut self, r: Option<super::why::Recorder>) {
+        self.core.why = r;
+    }
+
     /// Runs one reasoning cycle with this cycle's percepts and incoming messages.
     pub fn step(&mut self, percepts: &[Term], messages: &[Message]) -> CycleOutput {
         if let Some(s) = &self.stopped {
@@ -373,6 +381,9 @@ impl Agent {
             };
         }
         self.cycle += 1;
+        if let Some(w) = &self.core.why {
+            w.begin(self.cycle);
+        }
         self.core.out = CycleOutput::default();
         let quota_end = self
             .core

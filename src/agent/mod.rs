@@ -41,6 +41,7 @@ pub mod program;
 pub mod rule;
 pub mod trace;
 pub mod watch;
+pub mod why;
 
 pub use cycle::{
     show_duration, Agent, AgentConfig, CycleOutput, StopReason, DEFAULT_CYCLE_TIME,
