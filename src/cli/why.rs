@@ -30,6 +30,10 @@ pub struct Args {
     /// Number of robots, for a .mas2g or .goal file.
     #[arg(long)]
     pub robots: Option<usize>,
+    /// For a .mas2g or .goal file: the run's tick limit, as `goal run --max-ticks` (later
+    /// ticks are past its end).
+    #[arg(long, default_value_t = 10_000, value_parser = super::limits::positive)]
+    pub max_ticks: u64,
     /// Print the report as JSON.
     #[arg(long)]
     pub json: bool,
@@ -51,6 +55,7 @@ fn why(args: &Args) -> Result<Why, WhyError> {
         seed: args.seed,
         map: args.map.clone(),
         robots: args.robots,
+        max_ticks: args.max_ticks,
         ..RunOptions::default()
     };
     match &args.file {
@@ -74,6 +79,11 @@ pub fn main(args: Args) -> ExitCode {
         return exit::code(exit::USAGE);
     }
     let report = why(&args).and_then(|w| w.report(&args.agent, args.tick));
+    if let Ok(r) = &report {
+        if r.matches_trace == Some(false) {
+            eprintln!("warning: {}", goal::why::MISMATCH);
+        }
+    }
     match report {
         Ok(r) if args.json => {
             let text = serde_json::to_string_pretty(&r).unwrap_or_default();

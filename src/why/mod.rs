@@ -91,6 +91,11 @@ impl fmt::Display for WhyError {
 
 impl std::error::Error for WhyError {}
 
+/// What to say when [`WhyReport::matches_trace`] is false.
+pub const MISMATCH: &str = "the rerun fired other rules than the trace recorded for this \
+     cycle: the agent files (or the map) changed since the trace was written, so this report \
+     may not be about the recorded run";
+
 /// Explains what agent `agent`'s rules did at tick `tick` of the run of `system` with `opts`
 /// (rerunning it up to that tick).
 pub fn explain(

@@ -70,7 +70,7 @@ pub(super) fn explain(
         warnings: Vec::new(),
     };
     let opts = RunOptions {
-        max_ticks: tick.saturating_add(1),
+        max_ticks: opts.max_ticks.min(tick.saturating_add(1)),
         workers: 1,
         realtime: None,
         time_limit: None,

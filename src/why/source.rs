@@ -102,6 +102,8 @@ impl TraceRun {
         })?;
         let mut opts = RunOptions {
             seed: self.header["seed"].as_u64(),
+            // The end record tells where the run ended.
+            max_ticks: u64::MAX,
             ..RunOptions::default()
         }
         .with_replay(&self.header["options"]);

@@ -18,13 +18,6 @@ pub fn render(r: &WhyReport) -> String {
     if let Some(s) = &r.stopped {
         let _ = writeln!(out, "the agent stopped in this cycle: {s}");
     }
-    if r.matches_trace == Some(false) {
-        let _ = writeln!(
-            out,
-            "warning: the rerun fired other rules than the trace recorded for this cycle: the \
-             agent files (or the map) changed since the trace was written"
-        );
-    }
     let mut section = None;
     for rule in &r.rules {
         let key = (rule.phase.as_str(), rule.depth, rule.module.as_str());
