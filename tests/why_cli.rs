@@ -345,3 +345,29 @@ fn the_library_api_answers_again_and_again() {
     let e = why.why("nobody", 0).unwrap_err();
     assert!(e.contains("no agent named nobody"), "{e}");
 }
+
+#[test]
+fn nested_blocks_and_called_modules_are_explained_in_place() {
+    let args = [
+        "tests/fixtures/goal2014/scope.goal",
+        "--agent",
+        "scope",
+        "--tick",
+        "0",
+    ];
+    insta::assert_snapshot!("why_scope_nested", why_ok(&args));
+    let r = why_json(&args);
+    let rules = r["rules"].as_array().unwrap();
+    let depths: Vec<u64> = rules.iter().map(|x| x["depth"].as_u64().unwrap()).collect();
+    assert_eq!(depths, [1, 2, 3, 3]);
+    assert_eq!(rules[1]["block_of"], "main:8");
+    assert_eq!(rules[2]["module"], "show");
+    assert_eq!(r["module"], "show");
+}
+
+/// The view server holds a `Why` and may answer from any thread.
+#[test]
+fn a_why_can_be_shared_between_threads() {
+    fn shared<T: Send + Sync>() {}
+    shared::<Why>();
+}

@@ -430,6 +430,8 @@ pub struct RuleWhy {
     pub phase: String,
     /// Module nesting (1: the module the phase started in).
     pub depth: usize,
+    /// For a rule of a nested block: the rule (`module:line`) whose body the block is.
+    pub block_of: Option<String>,
     /// The condition's literals (macros expanded) and how each fared.
     pub literals: Vec<LiteralWhy>,
     /// Answers of the condition (fired), or partial answers that reached the failed literal.
@@ -513,6 +515,16 @@ impl CycleRecord {
     }
 }
 
+/// The label of the rule whose body is the nested block `block`, if it is one.
+fn block_owner(prog: &Program, block: usize) -> Option<String> {
+    use super::program::Body;
+    prog.blocks
+        .iter()
+        .flat_map(|b| &b.rules)
+        .find(|r| matches!(r.body, Body::Block(i) if i == block))
+        .map(|r| r.label.to_string())
+}
+
 /// A not-evaluated entry for rule `ri` of the block `e` ran in.
 fn base(prog: &Program, e: &Eval, ri: usize) -> RuleWhy {
     let rule = &prog.blocks[e.block].rules[ri];
@@ -532,6 +544,7 @@ fn base(prog: &Program, e: &Eval, ri: usize) -> RuleWhy {
         module: e.module.clone(),
         phase: e.phase.to_string(),
         depth: e.depth,
+        block_of: block_owner(prog, e.block),
         literals: Vec::new(),
         answers: 0,
         fired_with: Vec::new(),

@@ -20,16 +20,19 @@ pub fn render(r: &WhyReport) -> String {
     }
     let mut section = None;
     for rule in &r.rules {
-        let key = (rule.phase.as_str(), rule.depth, rule.module.as_str());
+        let key = (
+            rule.phase.as_str(),
+            rule.depth,
+            rule.module.as_str(),
+            rule.block_of.as_deref(),
+        );
         if section != Some(key) {
             section = Some(key);
-            let _ = writeln!(
-                out,
-                "\n{}module {} ({} phase)",
-                indent(rule.depth),
-                rule.module,
-                rule.phase
-            );
+            let what = match &rule.block_of {
+                Some(owner) => format!("nested block of rule {owner}"),
+                None => format!("module {}", rule.module),
+            };
+            let _ = writeln!(out, "\n{}{what} ({} phase)", indent(rule.depth), rule.phase);
         }
         render_rule(&mut out, rule);
     }
