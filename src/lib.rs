@@ -16,3 +16,4 @@ pub mod suggest;
 pub mod syntax;
 pub mod term;
 pub mod testing;
+pub mod why;

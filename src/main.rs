@@ -42,6 +42,8 @@ enum Command {
     Bench(cli::bench::Args),
     /// Grade a class: run every submission on maps, robot counts and seeds; write one table.
     Grade(cli::grade::Args),
+    /// Explain what each rule of an agent did at a tick of a run (a trace or a .mas2g rerun).
+    Why(cli::why::Args),
 }
 
 fn main() -> ExitCode {
@@ -54,5 +56,6 @@ fn main() -> ExitCode {
         Command::Test(args) => cli::test::main(args),
         Command::Bench(args) => cli::bench::main(args),
         Command::Grade(args) => cli::grade::main(args),
+        Command::Why(args) => cli::why::main(args),
     }
 }

@@ -413,6 +413,8 @@ impl<'s> Compiler<'s> {
             body,
             label: format!("{module}:{line}").into(),
             line,
+            file: self.file.as_str().into(),
+            text: super::why::rule_text(self.source, r).into(),
             per_goal,
         })
     }
@@ -728,6 +730,8 @@ pub(crate) fn extend(
                     body: Body::Combo(vec![def]),
                     label: format!("test:{line}").into(),
                     line,
+                    file: file.into(),
+                    text: super::why::one_line(source.get(a.span.clone()).unwrap_or("")).into(),
                     per_goal: false,
                 });
             }

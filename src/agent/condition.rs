@@ -79,9 +79,30 @@ pub fn eval_upto(
     base: &Subst,
     cap: usize,
 ) -> Result<(Vec<Subst>, bool), Fault> {
+    let e = evaluate(cx, lits, base, cap)?;
+    Ok((e.answers, e.cut))
+}
+
+/// A condition evaluated: its answers, whether `cap` cut them, and where it failed.
+pub struct Evaluation {
+    pub answers: Vec<Subst>,
+    pub cut: bool,
+    /// The first literal without answers (its index) and the answers of the literals before
+    /// it; `None` when the condition holds.
+    pub failed: Option<(usize, Vec<Subst>)>,
+}
+
+/// [`eval_upto`], also telling which literal failed (`goal why` shows it; costs nothing more:
+/// the answers before the failing literal are handed back instead of dropped).
+pub fn evaluate(
+    cx: &CondCtx<'_>,
+    lits: &[Lit],
+    base: &Subst,
+    cap: usize,
+) -> Result<Evaluation, Fault> {
     let mut cut = false;
     let mut answers = vec![base.clone()];
-    for lit in lits {
+    for (i, lit) in lits.iter().enumerate() {
         let mut next = AnswerSet::default();
         'each: for theta in &answers {
             for a in literal(cx, lit, theta, cap, &mut cut)? {
@@ -92,12 +113,20 @@ pub fn eval_upto(
                 next.push(a);
             }
         }
-        answers = next.items;
-        if answers.is_empty() {
-            break;
+        if next.items.is_empty() {
+            return Ok(Evaluation {
+                answers: Vec::new(),
+                cut,
+                failed: Some((i, answers)),
+            });
         }
+        answers = next.items;
     }
-    Ok((answers, cut))
+    Ok(Evaluation {
+        answers,
+        cut,
+        failed: None,
+    })
 }
 
 /// The answers of one literal under `theta` (each extends `theta`), at most `cap` per query

@@ -135,6 +135,8 @@ pub struct Core {
     pub truncated_rules: BTreeSet<String>,
     /// Sleep, timers and channel subscriptions (modular GOAL).
     pub timing: Timing,
+    /// Records what the rules do, for `goal why` (`None` in ordinary runs).
+    pub why: Option<super::why::Recorder>,
 }
 
 impl Core {
@@ -281,6 +283,7 @@ impl Agent {
                 unsettled: false,
                 truncated_rules: BTreeSet::new(),
                 timing: Timing::default(),
+                why: None,
             },
             types: config.percept_types,
             cycle: 0,
@@ -377,6 +380,11 @@ impl Agent {
         std::mem::replace(&mut self.core.watcher, w)
     }
 
+    /// Installs (or removes, with `None`) a recorder of what the rules do in each cycle.
+    pub fn set_why(&mut self, r: Option<super::why::Recorder>) {
+        self.core.why = r;
+    }
+
     /// Runs one reasoning cycle with this cycle's percepts and incoming messages.
     pub fn step(&mut self, percepts: &[Term], messages: &[Message]) -> CycleOutput {
         if let Some(s) = &self.stopped {
@@ -412,6 +420,9 @@ impl Agent {
         let percepts = batch.as_deref().unwrap_or(percepts);
         let messages = held.as_deref().unwrap_or(messages);
         self.cycle += 1;
+        if let Some(w) = &self.core.why {
+            w.begin(self.cycle);
+        }
         self.core.out = CycleOutput::default();
         let quota_end = self
             .core

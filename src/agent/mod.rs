@@ -42,6 +42,7 @@ pub mod rule;
 pub mod timing;
 pub mod trace;
 pub mod watch;
+pub mod why;
 
 pub use cycle::{
     show_duration, Agent, AgentConfig, CycleOutput, StopReason, DEFAULT_CYCLE_TIME,

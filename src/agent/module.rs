@@ -217,6 +217,9 @@ impl Core {
                         f.next += 1;
                         let (b, s) = (f.block, f.subst.clone());
                         let rule = &block.rules[ri];
+                        if self.why.is_some() {
+                            self.why_evaluating(prog, stack, b, ri);
+                        }
                         let answers = self
                             .rule_answers(rule, &s, &prog.file)
                             .map_err(|e| self.error(prog, Some((b, ri, rule.line)), e))?;
@@ -286,6 +289,9 @@ impl Core {
                     r.next += 1;
                     let (b, ri) = (r.block, r.rule);
                     self.fired(rule, &answer.subst);
+                    if self.why.is_some() {
+                        self.why_fired(prog, stack, (b, ri), &answer.subst);
+                    }
                     match &rule.body {
                         Body::Combo(_) => stack.push(Frame::Combo(ComboFrame {
                             block: b,
@@ -357,6 +363,10 @@ impl Core {
                             }
                             match outcome {
                                 Outcome::NotRun => {
+                                    if self.why.is_some() {
+                                        let at = (c.block, c.rule);
+                                        self.why_not_run(prog, stack, at, act, &s);
+                                    }
                                     if let Some(Frame::Combo(c)) = stack.last_mut() {
                                         c.next = usize::MAX;
                                     }

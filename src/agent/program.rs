@@ -91,6 +91,10 @@ pub struct RuleDef {
     /// `module:line`, used in traces and errors.
     pub label: Arc<str>,
     pub line: usize,
+    /// The file the rule is written in, and its source text on one line (comments left out,
+    /// a nested block's rules elided), as `goal why` shows it.
+    pub file: Arc<str>,
+    pub text: Arc<str>,
     /// The body calls a `focus=select` module (evaluate the condition per goal).
     pub per_goal: bool,
 }

@@ -1,7 +1,7 @@
 //! Rule kinds: computing the answers a rule body runs for (`if`: shuffled, one acting answer;
 //! `forall`: all answers computed up front; `listall`: one answer binding the list).
 
-use super::condition::{eval_upto, show_subst, CondCtx};
+use super::condition::{evaluate, show_subst, CondCtx};
 use super::cycle::Core;
 use super::error::Fault;
 use super::goals::Goal;
@@ -45,9 +45,12 @@ impl Core {
                     ms: &self.ms,
                     only: Some(g),
                 };
-                let (found, stopped) = eval_upto(&cx, &rule.cond, base, cap)?;
-                cut |= stopped;
-                for s in found {
+                let e = evaluate(&cx, &rule.cond, base, cap)?;
+                if self.why.is_some() {
+                    self.why_condition(&rule.cond, &e);
+                }
+                cut |= e.cut;
+                for s in e.answers {
                     let full = answers.len() >= cap;
                     match answers.iter_mut().find(|a| a.subst == s) {
                         Some(a) => a.goals.push(g.clone()),
@@ -64,9 +67,13 @@ impl Core {
                 ms: &self.ms,
                 only: None,
             };
-            let (found, stopped) = eval_upto(&cx, &rule.cond, base, cap)?;
-            cut = stopped;
-            answers = found
+            let e = evaluate(&cx, &rule.cond, base, cap)?;
+            if self.why.is_some() {
+                self.why_condition(&rule.cond, &e);
+            }
+            cut = e.cut;
+            answers = e
+                .answers
                 .into_iter()
                 .map(|subst| Answer {
                     subst,
@@ -76,6 +83,9 @@ impl Core {
         }
         if cut {
             self.warn_truncated(rule, file);
+        }
+        if let Some(w) = &self.why {
+            w.answers(answers.len());
         }
         if self.level >= TraceLevel::Rules {
             self.event(Event::RuleEvaluated {

@@ -8,3 +8,4 @@ pub mod limits;
 pub mod prolog;
 pub mod run;
 pub mod test;
+pub mod why;

@@ -130,6 +130,7 @@ fn localize_lines(p: &mut Program, sources: &SourceSet) {
             let module = r.label.rsplit_once(':').map_or("", |(m, _)| m).to_string();
             let (file, line) = sources.local_line(r.line);
             r.line = line;
+            r.file = file.into();
             // Rules the lowering added point into the MAS file: say so in their label.
             r.label = if file == mas_file {
                 let base = Path::new(file)

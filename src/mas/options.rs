@@ -69,3 +69,36 @@ impl Default for RunOptions {
         }
     }
 }
+
+impl RunOptions {
+    /// The options that change what happens in a run besides its system, seed and map, as the
+    /// trace header records them (`options`), so that `goal why` can rerun it exactly.
+    pub fn replay_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "robots": self.robots,
+            "max_beliefs": self.max_beliefs,
+            "max_mailbox": self.max_mailbox,
+            "max_sent": self.max_sent,
+        })
+    }
+
+    /// These options with those of a trace header's `options` (missing fields keep their
+    /// value: traces written before the field existed).
+    pub fn with_replay(mut self, v: &serde_json::Value) -> RunOptions {
+        let get = |k: &str| v.get(k).and_then(serde_json::Value::as_u64);
+        let size = |n: u64| usize::try_from(n).unwrap_or(usize::MAX);
+        if let Some(r) = get("robots") {
+            self.robots = Some(size(r));
+        }
+        if let Some(n) = get("max_beliefs") {
+            self.max_beliefs = size(n);
+        }
+        if let Some(n) = get("max_mailbox") {
+            self.max_mailbox = size(n);
+        }
+        if let Some(n) = get("max_sent") {
+            self.max_sent = size(n);
+        }
+        self
+    }
+}

@@ -252,6 +252,7 @@ impl<'a> Setup<'a> {
                 self.seed,
                 self.map.as_deref(),
                 &infos,
+                self.opts.replay_json(),
             );
         }
         let initial = std::mem::take(&mut self.initial);
@@ -494,6 +495,7 @@ impl<'a> Setup<'a> {
                     None => EndReason::CycleLimit,
                 };
             }
+            obs.pace(round, tick);
             if let Some(tps) = self.opts.realtime.filter(|t| *t > 0.0 && t.is_finite()) {
                 let due = Duration::try_from_secs_f64(round as f64 / tps)
                     .ok()

@@ -44,7 +44,8 @@ impl TraceWriter {
         }
     }
 
-    /// The header: format, version, system file, environment, seed, map and agents.
+    /// The header: format, version, system file, environment, seed, map, agents, and the run
+    /// options a rerun needs (`RunOptions::replay_json`).
     pub fn header(
         &mut self,
         file: &str,
@@ -52,6 +53,7 @@ impl TraceWriter {
         seed: u64,
         map: Option<&str>,
         agents: &[AgentInfo],
+        options: Value,
     ) {
         let agents: Vec<Value> = agents
             .iter()
@@ -66,6 +68,7 @@ impl TraceWriter {
             "seed": seed,
             "map": map,
             "agents": agents,
+            "options": options,
         }));
     }
 
