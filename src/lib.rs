@@ -14,3 +14,4 @@ pub mod mas;
 pub mod syntax;
 pub mod term;
 pub mod testing;
+pub mod view;

@@ -40,6 +40,8 @@ enum Command {
     Prolog(cli::prolog::Args),
     /// Run a benchmark (token rings, reasoning, percept load, idle agents) and print its figures.
     Bench(cli::bench::Args),
+    /// Replay a recorded trace in the browser (prints the page's local address).
+    View(cli::view::Args),
 }
 
 fn main() -> ExitCode {
@@ -51,5 +53,6 @@ fn main() -> ExitCode {
         Command::Prolog(args) => cli::prolog::main(args),
         Command::Test(args) => cli::test::main(args),
         Command::Bench(args) => cli::bench::main(args),
+        Command::View(args) => cli::view::main(args),
     }
 }

@@ -76,6 +76,7 @@ pub mod motion;
 pub mod nav;
 pub mod obstacles;
 pub mod percepts;
+pub mod scene;
 pub mod stats;
 pub mod world;
 pub mod xml;
@@ -133,6 +134,7 @@ pub struct Bw4t {
     positions: bool,
     navpoints: bool,
     warnings: Vec<String>,
+    headings: scene::Headings,
 }
 
 impl Bw4t {
@@ -166,6 +168,7 @@ impl Bw4t {
             positions: config.position_percepts,
             navpoints: config.navpoints,
             warnings,
+            headings: scene::Headings::default(),
         }
     }
 
@@ -346,6 +349,14 @@ impl Environment for Bw4t {
 
     fn stats(&self) -> serde_json::Value {
         serde_json::to_value(self.run_stats()).unwrap_or(serde_json::Value::Null)
+    }
+
+    fn layout(&self) -> Option<serde_json::Value> {
+        Some(scene::layout(&self.world))
+    }
+
+    fn scene(&mut self) -> Option<serde_json::Value> {
+        Some(scene::scene(&self.world, &mut self.headings))
     }
 }
 

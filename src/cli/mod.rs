@@ -7,3 +7,4 @@ pub mod limits;
 pub mod prolog;
 pub mod run;
 pub mod test;
+pub mod view;

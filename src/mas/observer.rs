@@ -30,6 +30,9 @@ pub trait Observer {
     }
     /// Progress, every few rounds.
     fn progress(&mut self, _p: &Progress) {}
+    /// Round `round` is over and the environment is at `tick`: a watching observer may block
+    /// here to pace, pause or single-step the run (the next round starts when it returns).
+    fn pace(&mut self, _round: u64, _tick: u64) {}
     /// Every agent is created and the first round is about to start (benchmarks time the
     /// creation apart from the run).
     fn started(&mut self, _agents: usize, _workers: usize) {}

@@ -254,6 +254,9 @@ impl<'a> Setup<'a> {
                 &infos,
             );
         }
+        if let Some(t) = trace.as_mut() {
+            self.draw(t, 0, 0, true);
+        }
         let initial = std::mem::take(&mut self.initial);
         self.deliver_percepts(initial);
         obs.started(self.slots.len(), self.pool.workers());
@@ -461,6 +464,9 @@ impl<'a> Setup<'a> {
                         alive -= self.results(acted, &reply.results, when, trace.as_mut(), obs);
                         tick = reply.tick;
                         finished = reply.finished;
+                        if let Some(t) = trace.as_mut() {
+                            self.draw(t, round + 1, tick, false);
+                        }
                         self.deliver_percepts(reply.percepts);
                     }
                     Err(e) => {
@@ -494,6 +500,7 @@ impl<'a> Setup<'a> {
                     None => EndReason::CycleLimit,
                 };
             }
+            obs.pace(round, tick);
             if let Some(tps) = self.opts.realtime.filter(|t| *t > 0.0 && t.is_finite()) {
                 let due = Duration::try_from_secs_f64(round as f64 / tps)
                     .ok()
@@ -671,6 +678,21 @@ impl<'a> Setup<'a> {
         s.stats.error = Some(text);
         self.pool.halt(i, e);
         true
+    }
+
+    /// Writes what a viewer draws of the environment to the trace: its layout (`first`) and
+    /// the changes of its scene at the start of `tick`. Nothing without an environment or when
+    /// it has nothing to draw.
+    fn draw(&self, trace: &mut TraceWriter, round: u64, tick: u64, first: bool) {
+        let Some(h) = &self.env else { return };
+        if first {
+            if let Ok(Some(layout)) = h.layout() {
+                trace.map(layout);
+            }
+        }
+        if let Ok(Some(scene)) = h.scene() {
+            trace.world(round, tick, &scene);
+        }
     }
 
     fn agent_infos(&self) -> Vec<AgentInfo> {
