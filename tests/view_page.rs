@@ -281,3 +281,45 @@ fn the_why_panel_shows_the_answer_or_says_there_is_none() {
     assert!(notes.is_empty());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_page_measures_its_load_and_timeline_moves() {
+    let Some(browser) = browser() else { return };
+    let dir = scratch("measure");
+    let trace = dir.join("endless.jsonl");
+    let map = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/view/endless.toml"
+    );
+    let st = goal()
+        .args(["run", "--max-ticks", "300", "--map", map, "--trace"])
+        .arg(&trace)
+        .stderr(std::process::Stdio::null())
+        .status()
+        .unwrap();
+    assert_eq!(st.code(), Some(3));
+    let mut cmd = goal();
+    cmd.arg("view").arg(&trace);
+    let served = Served::start(cmd);
+    let dom = dump_dom(
+        &browser,
+        &dir.join("p1"),
+        &format!("{}?measure=1", served.url),
+    );
+    let at = dom
+        .find("<div id=\"measure\"")
+        .expect("the measure element");
+    let m = &dom[at..at + dom[at..].find('>').unwrap()];
+    for key in ["data-load-ms", "data-seek-median-ms", "data-seek-max-ms"] {
+        let v: f64 = attr(m, key)
+            .and_then(|v| v.parse().ok())
+            .unwrap_or_else(|| panic!("{key} in {m}"));
+        assert!(v >= 0.0);
+    }
+    assert_eq!(
+        attr(m, "data-ticks"),
+        Some("300"),
+        "the world after the last round is tick 300"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -230,3 +230,46 @@ impl TraceWriter {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::{Arc, Mutex};
+
+    #[derive(Clone, Default)]
+    struct Sink(Arc<Mutex<Vec<u8>>>);
+    impl Write for Sink {
+        fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
+            self.0.lock().unwrap().extend_from_slice(b);
+            Ok(b.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn world_records_carry_only_changes() {
+        let sink = Sink::default();
+        let mut t = TraceWriter::new(Box::new(sink.clone()));
+        let a = json!({"robots": {"Bot1": {"pos": [1.0, 2.0], "path": [[3.0, 4.0]]}},
+                       "blocks": {"7": {"color": "Red"}}, "sequence_index": 0});
+        t.world(0, 0, &a);
+        t.world(1, 1, &a);
+        let b = json!({"robots": {"Bot1": {"pos": [1.5, 2.0], "path": [[3.0, 4.0]]}},
+                       "blocks": {}, "sequence_index": 1});
+        t.world(2, 2, &b);
+        t.finish().unwrap();
+        let text = String::from_utf8(sink.0.lock().unwrap().clone()).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 2, "an unchanged world writes nothing: {text}");
+        assert_eq!(
+            lines[0],
+            r#"{"round":0,"set":{"blocks/7/color":"Red","robots/Bot1/path":[[3.0,4.0]],"robots/Bot1/pos":[1.0,2.0],"sequence_index":0},"tick":0,"type":"world","unset":[]}"#
+        );
+        assert_eq!(
+            lines[1],
+            r#"{"round":2,"set":{"robots/Bot1/pos":[1.5,2.0],"sequence_index":1},"tick":2,"type":"world","unset":["blocks/7/color"]}"#
+        );
+    }
+}
