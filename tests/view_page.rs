@@ -132,6 +132,15 @@ fn a_live_run_is_drawn_as_it_goes() {
     assert_world(&a);
     assert_world(&b);
     assert!(a.contains("<span id=\"mode\">live run</span>"));
+    let fired = b
+        .split("data-key=\"last rule fired\">")
+        .nth(1)
+        .and_then(|s| s.split('<').next())
+        .unwrap_or("");
+    assert!(
+        fired.contains(':') && fired.contains("tick"),
+        "the last rule fired: {fired}"
+    );
     assert_ne!(robots(&a), robots(&b), "the robots moved");
     assert_ne!(list(&a, "beliefs"), list(&b, "beliefs"));
     // Following the run: the page shows the newest tick, later than before.

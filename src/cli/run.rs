@@ -271,7 +271,8 @@ fn options(args: &Args, sys: &MasSystem, stop: &Arc<AtomicUsize>) -> RunOptions 
         realtime: args.realtime,
         time_limit,
         skip_idle: !args.no_skip,
-        trace_rules: args.trace.is_some(),
+        // The page shows the rules fired, like a trace file.
+        trace_rules: args.trace.is_some() || args.view.is_some(),
         interrupt: Some(stop.clone()),
         max_memory: Some(args.max_memory.saturating_mul(1 << 20)),
         // A cycle never outlasts the run's time limit.
