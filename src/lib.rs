@@ -17,3 +17,4 @@ pub mod syntax;
 pub mod term;
 pub mod testing;
 pub mod why;
+pub mod view;

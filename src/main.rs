@@ -44,6 +44,8 @@ enum Command {
     Grade(cli::grade::Args),
     /// Explain what each rule of an agent did at a tick of a run (a trace or a .mas2g rerun).
     Why(cli::why::Args),
+    /// Replay a recorded trace in the browser (prints the page's local address).
+    View(cli::view::Args),
 }
 
 fn main() -> ExitCode {
@@ -57,5 +59,6 @@ fn main() -> ExitCode {
         Command::Bench(args) => cli::bench::main(args),
         Command::Grade(args) => cli::grade::main(args),
         Command::Why(args) => cli::why::main(args),
+        Command::View(args) => cli::view::main(args),
     }
 }

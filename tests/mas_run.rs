@@ -103,7 +103,7 @@ fn launch_rules_names_entities_and_max() {
     let header = &records(&trace)[0];
     assert_eq!(header["type"], "header");
     assert_eq!(header["format"], "goal-trace");
-    assert_eq!(header["version"], 1);
+    assert_eq!(header["version"], 2);
     assert_eq!(header["seed"], 3);
     assert_eq!(header["map"], "tiny");
     assert_eq!(header["agents"].as_array().map(|a| a.len()), Some(6));

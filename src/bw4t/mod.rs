@@ -76,6 +76,7 @@ pub mod motion;
 pub mod nav;
 pub mod obstacles;
 pub mod percepts;
+pub mod scene;
 pub mod stats;
 pub mod teams;
 pub mod world;
@@ -138,6 +139,7 @@ pub struct Bw4t {
     navpoints: bool,
     teams: Vec<usize>,
     warnings: Vec<String>,
+    headings: scene::Headings,
 }
 
 impl Bw4t {
@@ -177,6 +179,7 @@ impl Bw4t {
             navpoints: config.navpoints,
             teams: config.teams.clone(),
             warnings,
+            headings: scene::Headings::default(),
         }
     }
 
@@ -375,6 +378,14 @@ impl Environment for Bw4t {
 
     fn stats(&self) -> serde_json::Value {
         serde_json::to_value(self.run_stats()).unwrap_or(serde_json::Value::Null)
+    }
+
+    fn layout(&self) -> Option<serde_json::Value> {
+        Some(scene::layout(&self.world))
+    }
+
+    fn scene(&mut self) -> Option<serde_json::Value> {
+        Some(scene::scene(&self.world, &mut self.headings))
     }
 }
 

@@ -9,3 +9,4 @@ pub mod prolog;
 pub mod run;
 pub mod test;
 pub mod why;
+pub mod view;

@@ -8,6 +8,7 @@ use goal::agent::Message;
 use goal::mas::run::{Observer, Progress, RunOptions};
 use goal::mas::trace::TraceWriter;
 use goal::mas::{default_team, summary, system, vocabulary, MasSystem, Problem};
+use goal::view::{server, Control, Feed, FeedWriter, Pacer, Site, ViewServer};
 use std::io::{BufWriter, IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -73,6 +74,10 @@ pub struct Args {
     /// Show every message (logical form, speech act, English) and failed action on stderr.
     #[arg(long)]
     pub verbose: bool,
+    /// Watch the run in a browser: serve it on ADDR:PORT (default 127.0.0.1, any free port),
+    /// paced for watching; the page can pause, step and change the speed.
+    #[arg(long, value_name = "ADDR:PORT", num_args = 0..=1, default_missing_value = server::DEFAULT_ADDR)]
+    pub view: Option<String>,
 }
 
 struct Console {
@@ -83,6 +88,8 @@ struct Console {
     shown: bool,
     /// Raised when standard output is a closed pipe: the run stops after the round.
     stop: Arc<AtomicUsize>,
+    /// Paces the run for a watching page (`--view`).
+    pacer: Option<Pacer>,
 }
 
 impl Console {
@@ -133,6 +140,11 @@ impl Observer for Console {
     fn wants_progress(&self) -> bool {
         self.progress
     }
+    fn pace(&mut self, _round: u64, tick: u64) {
+        if let Some(p) = &mut self.pacer {
+            p.wait(tick);
+        }
+    }
     fn progress(&mut self, p: &Progress) {
         let _ = self.out.flush();
         eprint!(
@@ -153,7 +165,7 @@ fn report(problems: &[Problem]) -> ExitCode {
 /// Ctrl-C and SIGTERM set `flag` to the signal's number: the run finishes its round, writes
 /// the trace's end record and the stats, and exits with 128 + the signal. A second signal
 /// ends the program at once.
-fn catch_signals(flag: &Arc<AtomicUsize>) {
+pub(crate) fn catch_signals(flag: &Arc<AtomicUsize>) {
     use signal_hook::consts::{SIGINT, SIGTERM};
     use signal_hook::flag as sig;
     for s in [SIGINT, SIGTERM] {
@@ -163,6 +175,85 @@ fn catch_signals(flag: &Arc<AtomicUsize>) {
         let _ = sig::register(s, again);
         let _ = sig::register_usize(s, flag.clone(), s as usize);
     }
+}
+
+/// Starts the view server for `site` on `addr` and prints its address; `None` (said on
+/// stderr) when it cannot serve.
+pub(crate) fn open_view(addr: &str, site: Site) -> Option<ViewServer> {
+    let mut notes = Vec::new();
+    let served = server::serve(addr, site, &mut notes);
+    for n in notes {
+        eprintln!("warning: {n}");
+    }
+    match served {
+        Ok(s) => {
+            eprintln!("view: {} (open it in a browser)", s.url());
+            Some(s)
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            None
+        }
+    }
+}
+
+/// Waits until Ctrl-C or SIGTERM sets `stop`.
+pub(crate) fn wait_for_signal(stop: &AtomicUsize) {
+    while stop.load(Ordering::Relaxed) == 0 {
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+}
+
+/// A watched run: the page's feed of trace lines, its controls and the server.
+struct Watch {
+    feed: Arc<Feed>,
+    control: Arc<Control>,
+    server: ViewServer,
+}
+
+fn watch(args: &Args, addr: &str) -> Option<Watch> {
+    let feed = Arc::new(Feed::new());
+    let control = Control::new(goal::view::control::DEFAULT_SPEED);
+    let title = args
+        .file
+        .as_ref()
+        .map_or("the default BW4T team".into(), |f| f.display().to_string());
+    let site = Site {
+        feed: feed.clone(),
+        control: Some(control.clone()),
+        why: None,
+        title,
+    };
+    let server = open_view(addr, site)?;
+    Some(Watch {
+        feed,
+        control,
+        server,
+    })
+}
+
+/// The trace sink: the `--trace` file, the watching page's feed, or both.
+fn trace_sink(
+    path: Option<&PathBuf>,
+    feed: Option<&Arc<Feed>>,
+) -> Result<Option<TraceWriter>, String> {
+    let file = match path {
+        Some(p) => match std::fs::File::create(p) {
+            Ok(f) => Some(BufWriter::new(f)),
+            Err(e) => return Err(format!("cannot create trace file {}: {e}", p.display())),
+        },
+        None => None,
+    };
+    let out: Box<dyn Write + Send> = match (file, feed) {
+        (Some(f), Some(feed)) => Box::new(goal::view::feed::Tee {
+            first: f,
+            second: FeedWriter::new(feed.clone()),
+        }),
+        (Some(f), None) => Box::new(f),
+        (None, Some(feed)) => Box::new(FeedWriter::new(feed.clone())),
+        (None, None) => return Ok(None),
+    };
+    Ok(Some(TraceWriter::new(out)))
 }
 
 fn options(args: &Args, sys: &MasSystem, stop: &Arc<AtomicUsize>) -> RunOptions {
@@ -180,7 +271,8 @@ fn options(args: &Args, sys: &MasSystem, stop: &Arc<AtomicUsize>) -> RunOptions 
         realtime: args.realtime,
         time_limit,
         skip_idle: !args.no_skip,
-        trace_rules: args.trace.is_some(),
+        // The page shows the rules fired, like a trace file.
+        trace_rules: args.trace.is_some() || args.view.is_some(),
         interrupt: Some(stop.clone()),
         max_memory: Some(args.max_memory.saturating_mul(1 << 20)),
         // A cycle never outlasts the run's time limit.
@@ -225,15 +317,19 @@ pub fn main(args: Args) -> ExitCode {
     if sys.env.is_none() && (args.map.is_some() || args.robots.is_some()) {
         eprintln!("warning: --map and --robots need an environment; ignored");
     }
-    let trace = match &args.trace {
-        Some(p) => match std::fs::File::create(p) {
-            Ok(f) => Some(TraceWriter::new(Box::new(BufWriter::new(f)))),
-            Err(e) => {
-                eprintln!("error: cannot create trace file {}: {e}", p.display());
-                return exit::code(exit::FAILURE);
-            }
+    let watched = match &args.view {
+        Some(addr) => match watch(&args, addr) {
+            Some(w) => Some(w),
+            None => return exit::code(exit::FAILURE),
         },
         None => None,
+    };
+    let trace = match trace_sink(args.trace.as_ref(), watched.as_ref().map(|w| &w.feed)) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return exit::code(exit::FAILURE);
+        }
     };
     catch_signals(&stop);
     let mut console = Console {
@@ -243,6 +339,9 @@ pub fn main(args: Args) -> ExitCode {
         out: std::io::stdout().lock(),
         shown: false,
         stop: stop.clone(),
+        pacer: watched
+            .as_ref()
+            .map(|w| Pacer::new(w.control.clone(), stop.clone())),
     };
     let result = goal::mas::run(&sys, &opts, trace, &mut console);
     console.clear();
@@ -266,6 +365,17 @@ pub fn main(args: Args) -> ExitCode {
     eprint!("{}", summary::table(&summary));
     let signal = stop.load(Ordering::Relaxed);
     let code = exit::of_run(&summary, signal);
+    if let Some(w) = watched {
+        w.feed.close();
+        w.control.end();
+        if signal == 0 {
+            eprintln!(
+                "the run is over; the page stays at {} until Ctrl-C",
+                w.server.url()
+            );
+            wait_for_signal(&stop);
+        }
+    }
     if !files_ok && code != exit::SIGINT && code != exit::SIGTERM {
         return exit::code(exit::FAILURE);
     }

@@ -104,6 +104,15 @@ pub trait Environment: Send {
     fn is_finished(&self) -> bool;
     /// Run statistics as JSON.
     fn stats(&self) -> serde_json::Value;
+    /// The fixed layout a viewer draws (map), as JSON; `None`: nothing to draw.
+    fn layout(&self) -> Option<serde_json::Value> {
+        None
+    }
+    /// The moving parts a viewer draws now, as JSON objects keyed by name (so changes between
+    /// ticks are small); `None`: nothing to draw. Called once per tick at most.
+    fn scene(&mut self) -> Option<serde_json::Value> {
+        None
+    }
 }
 
 /// Environments that can be set up from init parameters (e.g. those of a `.mas2g` file).

@@ -87,6 +87,8 @@ enum Request {
     Perceive(Vec<String>, Sender<Batches>),
     Act(String, Term, Sender<Result<ActionResult, EnvError>>),
     Status(Sender<EnvStatus>),
+    /// The layout (true) or the scene (false) a viewer draws.
+    View(bool, Sender<Option<serde_json::Value>>),
     Stop,
 }
 
@@ -157,6 +159,16 @@ impl EnvHandle {
         self.ask(Request::Status)
     }
 
+    /// The fixed layout a viewer draws ([`Environment::layout`]).
+    pub fn layout(&self) -> Result<Option<serde_json::Value>, EnvError> {
+        self.ask(|tx| Request::View(true, tx))
+    }
+
+    /// The moving parts a viewer draws now ([`Environment::scene`]).
+    pub fn scene(&self) -> Result<Option<serde_json::Value>, EnvError> {
+        self.ask(|tx| Request::View(false, tx))
+    }
+
     /// Stops the thread and waits for it.
     pub fn stop(mut self) {
         self.shutdown();
@@ -206,6 +218,14 @@ fn status(env: &dyn Environment) -> EnvStatus {
     }
 }
 
+fn view(env: &mut dyn Environment, layout: bool) -> Option<serde_json::Value> {
+    if layout {
+        env.layout()
+    } else {
+        env.scene()
+    }
+}
+
 fn run_lock_step(mut env: Box<dyn Environment>, rx: Receiver<Request>) {
     while let Ok(req) = rx.recv() {
         match req {
@@ -235,6 +255,7 @@ fn run_lock_step(mut env: Box<dyn Environment>, rx: Receiver<Request>) {
                 )));
             }
             Request::Status(tx) => drop(tx.send(status(env.as_ref()))),
+            Request::View(layout, tx) => drop(tx.send(view(env.as_mut(), layout))),
             Request::Stop => break,
         }
     }
@@ -275,6 +296,7 @@ fn run_real_time(mut env: Box<dyn Environment>, rx: Receiver<Request>, tps: f64)
             Ok(Request::Perceive(names, tx)) => drop(tx.send(perceive(env.as_mut(), names))),
             Ok(Request::Act(e, a, tx)) => queue.push((e, a, tx)),
             Ok(Request::Status(tx)) => drop(tx.send(status(env.as_ref()))),
+            Ok(Request::View(layout, tx)) => drop(tx.send(view(env.as_mut(), layout))),
             Ok(Request::Stop) | Err(RecvTimeoutError::Disconnected) => break,
             Err(RecvTimeoutError::Timeout) => {}
         }

@@ -255,6 +255,9 @@ impl<'a> Setup<'a> {
                 self.opts.replay_json(),
             );
         }
+        if let Some(t) = trace.as_mut() {
+            self.draw(t, 0, 0, true);
+        }
         let initial = std::mem::take(&mut self.initial);
         self.deliver_percepts(initial);
         obs.started(self.slots.len(), self.pool.workers());
@@ -462,6 +465,9 @@ impl<'a> Setup<'a> {
                         alive -= self.results(acted, &reply.results, when, trace.as_mut(), obs);
                         tick = reply.tick;
                         finished = reply.finished;
+                        if let Some(t) = trace.as_mut() {
+                            self.draw(t, round + 1, tick, false);
+                        }
                         self.deliver_percepts(reply.percepts);
                     }
                     Err(e) => {
@@ -673,6 +679,21 @@ impl<'a> Setup<'a> {
         s.stats.error = Some(text);
         self.pool.halt(i, e);
         true
+    }
+
+    /// Writes what a viewer draws of the environment to the trace: its layout (`first`) and
+    /// the changes of its scene at the start of `tick`. Nothing without an environment or when
+    /// it has nothing to draw.
+    fn draw(&self, trace: &mut TraceWriter, round: u64, tick: u64, first: bool) {
+        let Some(h) = &self.env else { return };
+        if first {
+            if let Ok(Some(layout)) = h.layout() {
+                trace.map(layout);
+            }
+        }
+        if let Ok(Some(scene)) = h.scene() {
+            trace.world(round, tick, &scene);
+        }
     }
 
     fn agent_infos(&self) -> Vec<AgentInfo> {
