@@ -16,5 +16,5 @@ pub mod suggest;
 pub mod syntax;
 pub mod term;
 pub mod testing;
-pub mod why;
 pub mod view;
+pub mod why;

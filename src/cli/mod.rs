@@ -8,5 +8,5 @@ pub mod limits;
 pub mod prolog;
 pub mod run;
 pub mod test;
-pub mod why;
 pub mod view;
+pub mod why;

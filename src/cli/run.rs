@@ -211,7 +211,7 @@ struct Watch {
     server: ViewServer,
 }
 
-fn watch(args: &Args, addr: &str) -> Option<Watch> {
+fn watch(args: &Args, addr: &str, sys: &MasSystem, opts: &RunOptions) -> Option<Watch> {
     let feed = Arc::new(Feed::new());
     let control = Control::new(goal::view::control::DEFAULT_SPEED);
     let title = args
@@ -221,7 +221,11 @@ fn watch(args: &Args, addr: &str) -> Option<Watch> {
     let site = Site {
         feed: feed.clone(),
         control: Some(control.clone()),
-        why: None,
+        // Runs are deterministic: a why-question reruns the system up to the asked tick.
+        why: Some(Arc::new(goal::why::Why::for_system(
+            sys.clone(),
+            opts.clone(),
+        ))),
         title,
     };
     let server = open_view(addr, site)?;
@@ -288,8 +292,19 @@ fn options(args: &Args, sys: &MasSystem, stop: &Arc<AtomicUsize>) -> RunOptions 
     opts
 }
 
+/// `goal run --view team.mas2g`: clap reads the file as `--view`'s address; a value that is
+/// no address but names an existing file is the system to run, watched on the default address.
+fn view_file_as_system(args: &mut Args) {
+    let Some(v) = &args.view else { return };
+    if args.file.is_none() && server::parse_addr(v).is_err() && std::path::Path::new(v).is_file() {
+        args.file = Some(PathBuf::from(v));
+        args.view = Some(server::DEFAULT_ADDR.to_string());
+    }
+}
+
 /// Runs `goal run`.
-pub fn main(args: Args) -> ExitCode {
+pub fn main(mut args: Args) -> ExitCode {
+    view_file_as_system(&mut args);
     let single = args
         .file
         .as_ref()
@@ -318,7 +333,7 @@ pub fn main(args: Args) -> ExitCode {
         eprintln!("warning: --map and --robots need an environment; ignored");
     }
     let watched = match &args.view {
-        Some(addr) => match watch(&args, addr) {
+        Some(addr) => match watch(&args, addr, &sys, &opts) {
             Some(w) => Some(w),
             None => return exit::code(exit::FAILURE),
         },

@@ -27,10 +27,19 @@ pub fn main(args: Args) -> ExitCode {
             return exit::code(exit::FAILURE);
         }
     };
+    // The trace's header names the system and its options: why-questions rerun it.
+    let why: Option<Arc<dyn goal::view::WhyProvider>> = match goal::why::Why::for_trace(&args.trace)
+    {
+        Ok(w) => Some(Arc::new(w)),
+        Err(e) => {
+            eprintln!("warning: why-questions are unavailable for this replay: {e}");
+            None
+        }
+    };
     let site = Site {
         feed: Arc::new(Feed::complete(lines)),
         control: None,
-        why: None,
+        why,
         title: args.trace.display().to_string(),
     };
     let stop = Arc::new(AtomicUsize::new(0));

@@ -154,3 +154,9 @@ impl Why {
         serde_json::to_value(&r).map_err(|e| e.to_string())
     }
 }
+
+impl crate::view::WhyProvider for Why {
+    fn why(&self, agent: &str, tick: u64) -> Result<serde_json::Value, String> {
+        Why::why(self, agent, tick)
+    }
+}
