@@ -40,6 +40,10 @@ enum Command {
     Prolog(cli::prolog::Args),
     /// Run a benchmark (token rings, reasoning, percept load, idle agents) and print its figures.
     Bench(cli::bench::Args),
+    /// Explain a diagnostic code (E0121, W0110, ...) with a wrong and a fixed example.
+    Explain(cli::explain::Args),
+    /// Create a ready project (a .mas2g, agents, a .test2g and a README) from a template.
+    New(cli::new::Args),
 }
 
 fn main() -> ExitCode {
@@ -51,5 +55,7 @@ fn main() -> ExitCode {
         Command::Prolog(args) => cli::prolog::main(args),
         Command::Test(args) => cli::test::main(args),
         Command::Bench(args) => cli::bench::main(args),
+        Command::New(args) => cli::new::main(args),
+        Command::Explain(args) => cli::explain::main(args),
     }
 }

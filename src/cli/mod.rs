@@ -3,7 +3,9 @@
 pub mod bench;
 pub mod check;
 pub mod exit;
+pub mod explain;
 pub mod limits;
+pub mod new;
 pub mod prolog;
 pub mod run;
 pub mod test;
