@@ -71,7 +71,10 @@ fn every_predicate_the_engine_defines_is_listed() {
         .filter(|q| !q.contains('/'))
         .collect();
     for name in &protected {
-        assert!(is_protected(name), "`{name}` is listed as protected but is not");
+        assert!(
+            is_protected(name),
+            "`{name}` is listed as protected but is not"
+        );
     }
     let mut missing = Vec::new();
     for (name, arity) in known_predicates() {
@@ -80,5 +83,8 @@ fn every_predicate_the_engine_defines_is_listed() {
             missing.push(format!("{name}/{arity}"));
         }
     }
-    assert!(missing.is_empty(), "defined but not in docs/builtins.md: {missing:?}");
+    assert!(
+        missing.is_empty(),
+        "defined but not in docs/builtins.md: {missing:?}"
+    );
 }

@@ -17,7 +17,7 @@ const NOT_BY_FILE_CHECK: &[(&str, &str)] = &[
     ("E0018", "bytes that are not UTF-8 cannot be shown in a UTF-8 page"),
     ("E0019", "needs a file over 10 MB"),
     ("E0024", "about a file name: the example is a command"),
-    ("E0033", "needs 500 problems in one file"),
+    ("E0033", "needs 100 problems in one file"),
     ("E0401", "found while compiling; the validator reports E0103 first"),
     ("E0403", "found while compiling; the validator reports E0101 first"),
     ("E0406", "found while compiling; the validator reports E0022 first"),
