@@ -1,6 +1,6 @@
 //! `goal new NAME [--template bw4t|blocks|empty] [--generation 2014|modular|course]`: a ready
-//! project (a `.mas2g`, agent files, a `.test2g` and a README) from the templates embedded in
-//! the binary (`templates/`).
+//! project (a `.mas2g`, agent files, a `.test2g` and a README) from files embedded in the
+//! binary: the shipped agents where one fits (`agents/`), `templates/` for the others.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -51,20 +51,27 @@ struct Project {
     what: &'static str,
     /// `(file name, contents, what it is)` for every file but the README.
     files: &'static [(&'static str, &'static str, &'static str)],
+    /// More for the README (Markdown sections), or nothing.
+    more: &'static str,
 }
 
-/// `(name, contents, what it is)` of template files, read from `templates/DIR/`.
+/// `(name, contents, what it is)` of project files, read from `DIR/` (relative to the crate).
 macro_rules! files {
     ($dir:literal: $($file:literal => $what:literal),* $(,)?) => {
         &[$((
             $file,
-            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/templates/", $dir, "/", $file)),
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/", $dir, "/", $file)),
             $what,
         )),*]
     };
 }
 
 const README: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/templates/README.md"));
+/// How the BW4T team template's robots split the work.
+const TEAM: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/templates/bw4t/team.md"
+));
 
 const BW4T_WHAT: &str = "Robots in Blocks World for Teams (BW4T) fetch coloured blocks from the \
 rooms of a map and deliver them to the drop zone in the order of the colour sequence.";
@@ -78,17 +85,18 @@ fn project(template: Template, generation: Generation) -> Project {
             test: "robot.test2g",
             what: "One robot in Blocks World for Teams (BW4T) visits the rooms of the map one by \
                    one and delivers the blocks of the colour sequence to the drop zone, in order.",
-            files: files!("bw4t/2014":
+            files: files!("agents/bw4t":
                 "robot.mas2g" => "the system: the BW4T environment, map and robots, and which agent runs each robot",
                 "robot.goal" => "the robot's program: knowledge, beliefs, action specs and rules",
                 "robot.test2g" => "a test: the robot only heads for rooms it has not visited, and visits them all",
             ),
+            more: "",
         },
         (Bw4t, Modular) => Project {
             mas: "team.mas2g",
             test: "team.test2g",
             what: BW4T_WHAT,
-            files: files!("bw4t/modular":
+            files: files!("agents/bw4t/modular":
                 "team.mas2g" => "the system: the BW4T environment (3 robots) and the robot agent's modules",
                 "robotInit.mod2g" => "runs once: copies the map into beliefs, adopts the team's goal",
                 "robotEvents.mod2g" => "runs every cycle before the decisions: percepts and messages",
@@ -99,12 +107,13 @@ fn project(template: Template, generation: Generation) -> Project {
                 "robotBeliefs.pl" => "the beliefs the robot starts with",
                 "team.test2g" => "a test: only the colour needed now is put down, and the whole sequence is delivered",
             ),
+            more: TEAM,
         },
         (Bw4t, Course) => Project {
             mas: "team.mas2g",
             test: "team.test2g",
             what: BW4T_WHAT,
-            files: files!("bw4t/course":
+            files: files!("agents/bw4t/marbel":
                 "team.mas2g" => "the system: the BW4T environment (3 robots), the robot's modules and its percept declarations",
                 "robotInit.mod2g" => "runs once: route lengths from every place to every room",
                 "robotUpdate.mod2g" => "runs every cycle before the decisions: what the robot sees and hears",
@@ -113,24 +122,26 @@ fn project(template: Template, generation: Generation) -> Project {
                 "robot.pl" => "the database: rules, and the facts the robot starts with",
                 "team.test2g" => "a test: only the colour needed now is put down, and the whole sequence is delivered",
             ),
+            more: TEAM,
         },
         (Blocks, Y2014) => Project {
             mas: "stacker.mas2g",
             test: "stacker.test2g",
             what: "A gripper in the blocks world builds the towers the agent wants, moving one \
                    clear block at a time.",
-            files: files!("blocks/2014":
+            files: files!("agents/blocksworld":
                 "stacker.mas2g" => "the system: the blocks world and its starting towers, and the stacker agent",
                 "stacker.goal" => "the stacker's program",
                 "stacker.test2g" => "a test: the tower c, b, a gets built",
             ),
+            more: "",
         },
         (Blocks, Modular) => Project {
             mas: "stacker.mas2g",
             test: "stacker.test2g",
             what: "A gripper in the blocks world builds the towers the agent wants, moving one \
                    clear block at a time.",
-            files: files!("blocks/modular":
+            files: files!("templates/blocks/modular":
                 "stacker.mas2g" => "the system: the blocks world and its starting towers, and the stacker agent",
                 "stackerMain.mod2g" => "the decisions: one move per cycle until no goal is left",
                 "stackerEvents.mod2g" => "runs every cycle before the decisions: beliefs follow the percepts",
@@ -140,18 +151,20 @@ fn project(template: Template, generation: Generation) -> Project {
                 "stackerGoals.pl" => "the goal: the towers to build",
                 "stacker.test2g" => "a test: the tower c, b, a gets built",
             ),
+            more: "",
         },
         (Blocks, Course) => Project {
             mas: "stacker.mas2g",
             test: "stacker.test2g",
             what: "A gripper in the blocks world builds a tower, moving one clear block at a time.",
-            files: files!("blocks/course":
+            files: files!("templates/blocks/course":
                 "stacker.mas2g" => "the system: the blocks world and its starting towers, the stacker and its percept declaration",
                 "stackerUpdate.mod2g" => "runs every cycle before the decisions: notices when the tower stands",
                 "stackerControl.mod2g" => "the decisions: one move per cycle",
                 "tower.pl" => "the database: rules about blocks and the wanted tower",
                 "stacker.test2g" => "a test: the tower c, b, a gets built",
             ),
+            more: "",
         },
         (Empty, Y2014) => Project {
             mas: "counter.mas2g",
@@ -159,11 +172,12 @@ fn project(template: Template, generation: Generation) -> Project {
             what:
                 "One agent on its own, without an environment: it counts from 0 to 100 and stops. \
                    A place to start from scratch.",
-            files: files!("empty/2014":
+            files: files!("agents/counter":
                 "counter.mas2g" => "the system: one agent, no environment",
                 "counter.goal" => "the agent's program",
                 "counter.test2g" => "a test: the count goes up one by one to 100",
             ),
+            more: "",
         },
         (Empty, Modular) => Project {
             mas: "counter.mas2g",
@@ -171,7 +185,7 @@ fn project(template: Template, generation: Generation) -> Project {
             what:
                 "One agent on its own, without an environment: it counts from 0 to 100 and stops. \
                    A place to start from scratch.",
-            files: files!("empty/modular":
+            files: files!("templates/empty/modular":
                 "counter.mas2g" => "the system: one agent, no environment",
                 "counterMain.mod2g" => "the agent's decisions",
                 "counter.pl" => "knowledge",
@@ -179,6 +193,7 @@ fn project(template: Template, generation: Generation) -> Project {
                 "counterGoals.pl" => "the goal the agent starts with",
                 "counter.test2g" => "a test: the count goes up one by one to 100",
             ),
+            more: "",
         },
         (Empty, Course) => Project {
             mas: "counter.mas2g",
@@ -186,12 +201,13 @@ fn project(template: Template, generation: Generation) -> Project {
             what:
                 "One agent on its own, without an environment: it counts from 0 to 100 and stops. \
                    A place to start from scratch.",
-            files: files!("empty/course":
+            files: files!("templates/empty/course":
                 "counter.mas2g" => "the system: one agent, no environment",
                 "counterControl.mod2g" => "the agent's decisions",
                 "numbers.pl" => "the database: the count and where it stops",
                 "counter.test2g" => "a test: the count goes up one by one to 100",
             ),
+            more: "",
         },
     }
 }
@@ -280,4 +296,5 @@ fn readme(p: &Project, name: &str, template: Template, generation: Generation) -
         .replace("{{mas}}", p.mas)
         .replace("{{test}}", p.test)
         .replace("{{files}}", &files.join("\n"))
+        .replace("{{more}}", p.more)
 }
