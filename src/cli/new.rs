@@ -76,6 +76,13 @@ const TEAM: &str = include_str!(concat!(
 const BW4T_WHAT: &str = "Robots in Blocks World for Teams (BW4T) fetch coloured blocks from the \
 rooms of a map and deliver them to the drop zone in the order of the colour sequence.";
 
+const BLOCKS_WHAT: &str =
+    "A gripper in the blocks world builds the towers the agent wants, moving \
+one clear block at a time.";
+
+const EMPTY_WHAT: &str = "One agent on its own, without an environment: it counts from 0 to 100 \
+and stops. A place to start from scratch.";
+
 fn project(template: Template, generation: Generation) -> Project {
     use Generation::*;
     use Template::*;
@@ -127,8 +134,7 @@ fn project(template: Template, generation: Generation) -> Project {
         (Blocks, Y2014) => Project {
             mas: "stacker.mas2g",
             test: "stacker.test2g",
-            what: "A gripper in the blocks world builds the towers the agent wants, moving one \
-                   clear block at a time.",
+            what: BLOCKS_WHAT,
             files: files!("agents/blocksworld":
                 "stacker.mas2g" => "the system: the blocks world and its starting towers, and the stacker agent",
                 "stacker.goal" => "the stacker's program",
@@ -139,8 +145,7 @@ fn project(template: Template, generation: Generation) -> Project {
         (Blocks, Modular) => Project {
             mas: "stacker.mas2g",
             test: "stacker.test2g",
-            what: "A gripper in the blocks world builds the towers the agent wants, moving one \
-                   clear block at a time.",
+            what: BLOCKS_WHAT,
             files: files!("templates/blocks/modular":
                 "stacker.mas2g" => "the system: the blocks world and its starting towers, and the stacker agent",
                 "stackerMain.mod2g" => "the decisions: one move per cycle until no goal is left",
@@ -169,9 +174,7 @@ fn project(template: Template, generation: Generation) -> Project {
         (Empty, Y2014) => Project {
             mas: "counter.mas2g",
             test: "counter.test2g",
-            what:
-                "One agent on its own, without an environment: it counts from 0 to 100 and stops. \
-                   A place to start from scratch.",
+            what: EMPTY_WHAT,
             files: files!("agents/counter":
                 "counter.mas2g" => "the system: one agent, no environment",
                 "counter.goal" => "the agent's program",
@@ -182,9 +185,7 @@ fn project(template: Template, generation: Generation) -> Project {
         (Empty, Modular) => Project {
             mas: "counter.mas2g",
             test: "counter.test2g",
-            what:
-                "One agent on its own, without an environment: it counts from 0 to 100 and stops. \
-                   A place to start from scratch.",
+            what: EMPTY_WHAT,
             files: files!("templates/empty/modular":
                 "counter.mas2g" => "the system: one agent, no environment",
                 "counterMain.mod2g" => "the agent's decisions",
@@ -198,9 +199,7 @@ fn project(template: Template, generation: Generation) -> Project {
         (Empty, Course) => Project {
             mas: "counter.mas2g",
             test: "counter.test2g",
-            what:
-                "One agent on its own, without an environment: it counts from 0 to 100 and stops. \
-                   A place to start from scratch.",
+            what: EMPTY_WHAT,
             files: files!("templates/empty/course":
                 "counter.mas2g" => "the system: one agent, no environment",
                 "counterControl.mod2g" => "the agent's decisions",
