@@ -171,9 +171,12 @@ impl Diagnostic {
         out
     }
 
-    /// The last line of a rendered diagnostic: where its code is explained.
+    /// The last line of a rendered diagnostic: where its code is explained. Only `E` and `W`
+    /// codes have pages (the table in `syntax::codes`; a test keeps every such code there), map
+    /// codes (`M`) do not.
     fn footer(&self) -> Option<String> {
-        (!self.code.is_empty()).then(|| format!("for more, run goal explain {}", self.code))
+        matches!(self.code.chars().next(), Some('E' | 'W'))
+            .then(|| format!("for more, run goal explain {}", self.code))
     }
 
     /// One JSON object (no trailing newline) for editors and graders.
@@ -260,6 +263,14 @@ mod tests {
         assert!(text.contains("big.goal:1:10001"), "{text}");
         assert!(text.contains("...") && text.contains("^^^"), "{text}");
         assert!(text.len() < 1_000, "{}", text.len());
+    }
+
+    #[test]
+    fn map_codes_have_no_explain_footer() {
+        let d = Diagnostic::error("M0013", "rooms overlap", "m.toml", 0..1);
+        let text = d.render("x = 1\n");
+        assert!(text.contains("error[M0013]"), "{text}");
+        assert!(!text.contains("goal explain"), "{text}");
     }
 
     #[test]
