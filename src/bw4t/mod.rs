@@ -32,7 +32,7 @@
 //! * `message(Sender, Content)` has the interface's two arguments (Java: one list) and is an
 //!   always-percept of the messages received since the last batch (drained on reading);
 //!   `sendMessage(all, M)` reaches every *other* robot; content may be any term.
-//! * Colours: the interface's nine plus `DarkGray` (Java: `Dark_gray`), seen by colour-blind robots.
+//! * Colours: the interface's nine plus `DarkGray` (Java: `Dark_gray`) (colour-blind view).
 //! * Entities are `Bot1, Bot2, ...` (Java: `Bot_1`); asking for more robots than spawn points
 //!   creates none of the extra ones (a warning), instead of killing the spawn thread.
 //! * A block put down in a room lands within 0.5 of the robot (Java: anywhere in the room).
