@@ -1,5 +1,6 @@
 //! Every relative link in `README.md` and `docs/**/*.md` points at a file of the repository, so
-//! pages cannot silently lose their targets when files move.
+//! pages cannot silently lose their targets when files move; the `.goal` examples of the language
+//! reference check clean.
 
 use std::path::{Path, PathBuf};
 
@@ -51,4 +52,36 @@ fn relative_links_in_the_docs_resolve() {
         }
     }
     assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
+}
+
+/// The fenced blocks of a page whose info string starts with `lang`.
+fn blocks<'a>(text: &'a str, lang: &str) -> Vec<&'a str> {
+    let open = format!("```{lang}\n");
+    text.match_indices(&open)
+        .filter_map(|(i, _)| {
+            let body = &text[i + open.len()..];
+            body.find("```").map(|end| &body[..end])
+        })
+        .collect()
+}
+
+#[test]
+fn the_goal_examples_of_the_language_reference_check_without_errors() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("docs/language.md")).expect("language.md");
+    let examples = blocks(&text, "goal");
+    assert!(!examples.is_empty());
+    let dir = std::env::temp_dir().join(format!("goal-docs-examples-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    for (i, example) in examples.iter().enumerate() {
+        let file = dir.join(format!("example{i}.goal"));
+        std::fs::write(&file, example).expect("write");
+        let reports = goal::mas::envcheck::check_path(&file);
+        let problems: Vec<String> = reports
+            .iter()
+            .flat_map(|r| r.diagnostics.iter().map(|d| d.render(&r.source)))
+            .collect();
+        assert!(problems.is_empty(), "example {i}:\n{}", problems.join(""));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }
