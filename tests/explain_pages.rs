@@ -17,7 +17,10 @@ const NOT_BY_FILE_CHECK: &[(&str, &str)] = &[
     ("E0018", "bytes that are not UTF-8 cannot be shown in a UTF-8 page"),
     ("E0019", "needs a file over 10 MB"),
     ("E0024", "about a file name: the example is a command"),
-    ("E0033", "needs 100 problems in one file"),
+    (
+        "E0033",
+        "needs over 100 problems in one file: `too_many_problems_end_with_e0033` makes one",
+    ),
     ("E0401", "found while compiling; the validator reports E0103 first"),
     ("E0403", "found while compiling; the validator reports E0101 first"),
     ("E0406", "found while compiling; the validator reports E0022 first"),
@@ -233,4 +236,15 @@ fn rendered_diagnostics_end_with_goal_explain_but_json_does_not() {
     assert!(shown.contains("\"code\":\"E0121\""), "{shown}");
     assert!(!shown.contains("goal explain"), "{shown}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn too_many_problems_end_with_e0033() {
+    // 150 rules without `then`: the parser stops recording at 100 and says so.
+    let rules = "if bel(p) print(x).\n".repeat(150);
+    let text = format!("main module {{ program {{\n{rules}}} }}\n");
+    let (_, diags) = goal::syntax::goal::parse_goal("many.goal", &text);
+    assert_eq!(diags.len(), 101);
+    assert!(diags[..100].iter().all(|d| d.code == "E0014"));
+    assert_eq!(diags[100].code, "E0033", "{}", diags[100].message);
 }
