@@ -1,7 +1,9 @@
 //! The diagnostic pages (`docs/diagnostics/CODE.md`, shown by `goal explain CODE`): one page per
 //! code of the table and no other; every code the source emits is in the table; each page's
 //! wrong example, checked as `goal check` checks it, produces its code, and its fixed example
-//! does not (codes that no file check can show are listed below, each with the reason).
+//! does not (codes that no file check can show are listed below, each with the reason). An
+//! example whose first block is a ```sh block (about files themselves: missing, not UTF-8, too
+//! large) is run as shell commands with `goal` on the PATH.
 
 use goal::syntax::codes::CODES;
 use std::collections::BTreeSet;
@@ -13,10 +15,6 @@ const NOT_BY_FILE_CHECK: &[(&str, &str)] = &[
         "E0016",
         "needs about a thousand nested blocks; the page shows a short example",
     ),
-    ("E0017", "about a file that cannot be read: the example is a command"),
-    ("E0018", "bytes that are not UTF-8 cannot be shown in a UTF-8 page"),
-    ("E0019", "needs a file over 10 MB"),
-    ("E0024", "about a file name: the example is a command"),
     (
         "E0033",
         "needs over 100 problems in one file: `too_many_problems_end_with_e0033` makes one",
@@ -89,14 +87,51 @@ fn check(code: &str, title: &str, files: &[(String, String)]) -> (BTreeSet<Strin
         std::fs::create_dir_all(path.parent().expect("parent")).expect("dir");
         std::fs::write(&path, text).expect("write");
     }
-    let reports = goal::mas::envcheck::check_path(&dir.join(&files[0].0));
-    let codes = reports
-        .iter()
-        .flat_map(|r| r.diagnostics.iter().map(|d| d.code.clone()))
-        .collect();
-    let errors = reports.iter().any(|r| r.has_errors());
+    let result = if files[0].0 == "example.sh" {
+        run_commands(&dir, &files[0].1)
+    } else {
+        let reports = goal::mas::envcheck::check_path(&dir.join(&files[0].0));
+        let codes = reports
+            .iter()
+            .flat_map(|r| r.diagnostics.iter().map(|d| d.code.clone()))
+            .collect();
+        (codes, reports.iter().any(|r| r.has_errors()))
+    };
     let _ = std::fs::remove_dir_all(&dir);
-    (codes, errors)
+    result
+}
+
+/// Runs the lines of a ```sh example in `dir`; the codes in what `goal check` printed, and
+/// whether any line failed.
+fn run_commands(dir: &Path, script: &str) -> (BTreeSet<String>, bool) {
+    let bin = Path::new(env!("CARGO_BIN_EXE_goal"))
+        .parent()
+        .expect("bin dir");
+    let path = format!(
+        "{}:{}",
+        bin.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let (mut codes, mut failed) = (BTreeSet::new(), false);
+    for line in script.lines().filter(|l| !l.trim().is_empty()) {
+        let out = std::process::Command::new("sh")
+            .arg("-c")
+            .arg(line)
+            .current_dir(dir)
+            .env("PATH", &path)
+            .output()
+            .expect("sh runs");
+        failed |= !out.status.success();
+        let text = String::from_utf8_lossy(&out.stdout);
+        for (i, _) in text
+            .match_indices("error[")
+            .chain(text.match_indices("warning["))
+        {
+            let code = &text[i..].split(['[', ']']).nth(1).unwrap_or("");
+            codes.insert(code.to_string());
+        }
+    }
+    (codes, failed)
 }
 
 #[test]
