@@ -1,5 +1,5 @@
 //! KR benchmark: the native engine and scryer-prolog 0.10 side by side in one run, printed as a
-//! table with ratios (issue 3, figures of `../shared/spec/benchmarks.md`).
+//! table with ratios (issue 3: the target figures are in the README).
 //!
 //! Run with `cargo bench --bench kr`. `KR_BENCH_QUICK=1` runs every case a few times only (the
 //! smoke test in `tests/kr_diff_bench_smoke.rs` does that).

@@ -1,5 +1,6 @@
 //! Diagnostics: errors and warnings with a file, a byte span, a code, a message and a hint,
-//! rendered like rustc's (`error[E0001]: ...` with the source line and a caret) or as JSON lines.
+//! rendered like rustc's (`error[E0009]: ...` with the source line and a caret, ending with where
+//! to read more: `goal explain E0009`) or as JSON lines.
 
 use codespan_reporting::diagnostic::{Diagnostic as CsDiagnostic, Label, Severity as CsSeverity};
 use codespan_reporting::files::SimpleFiles;
@@ -29,7 +30,7 @@ pub enum Severity {
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct Diagnostic {
     pub severity: Severity,
-    /// A stable code such as `E0001` (errors) or `W0001` (warnings).
+    /// A stable code such as `E0009` (errors) or `W0001` (warnings).
     pub code: String,
     pub message: String,
     /// The file the span refers to (as given by the user).
@@ -114,9 +115,13 @@ impl Diagnostic {
             .with_code(self.code.clone())
             .with_message(self.message.clone())
             .with_labels(vec![Label::primary(id, start..end)]);
-        if let Some(h) = &self.hint {
-            d = d.with_notes(vec![format!("help: {h}")]);
-        }
+        let notes: Vec<String> = self
+            .hint
+            .iter()
+            .map(|h| format!("help: {h}"))
+            .chain(self.footer())
+            .collect();
+        d = d.with_notes(notes);
         let mut out = NoColor::new(Vec::new());
         let config = term::Config::default();
         if term::emit(&mut out, &config, &files, &d).is_err() {
@@ -159,8 +164,19 @@ impl Diagnostic {
         if let Some(h) = &self.hint {
             out.push_str(&format!("{pad} = help: {h}\n"));
         }
+        if let Some(f) = self.footer() {
+            out.push_str(&format!("{pad} = {f}\n"));
+        }
         out.push('\n');
         out
+    }
+
+    /// The last line of a rendered diagnostic: where its code is explained. Only `E` and `W`
+    /// codes have pages (the table in `syntax::codes`; a test keeps every such code there), map
+    /// codes (`M`) do not.
+    fn footer(&self) -> Option<String> {
+        matches!(self.code.chars().next(), Some('E' | 'W'))
+            .then(|| format!("for more, run goal explain {}", self.code))
     }
 
     /// One JSON object (no trailing newline) for editors and graders.
@@ -212,7 +228,7 @@ mod tests {
     fn renders_with_file_line_column_and_caret() {
         let src = "main module {\n  program { if bel(p) then foo. }\n}\n";
         let d = Diagnostic::error(
-            "E0004",
+            "E0104",
             "action `foo/0` is used but never specified",
             "a.goal",
             39..42,
@@ -220,9 +236,15 @@ mod tests {
         .with_hint("add an action spec for foo/0");
         let text = d.render(src);
         assert!(
-            text.contains("error[E0004]: action `foo/0` is used but never specified"),
+            text.contains("error[E0104]: action `foo/0` is used but never specified"),
             "{text}"
         );
+        assert!(
+            text.trim_end()
+                .ends_with("= for more, run goal explain E0104"),
+            "{text}"
+        );
+        assert!(!d.to_json(src).contains("goal explain"));
         assert!(text.contains("a.goal:2:26"), "{text}");
         assert!(text.contains("^^^"), "{text}");
         assert!(text.contains("help: add an action spec"), "{text}");
@@ -232,11 +254,23 @@ mod tests {
     #[test]
     fn long_lines_show_a_window_with_a_caret() {
         let src = format!("{}bad{}", "x ".repeat(5_000), " y".repeat(5_000));
-        let d = Diagnostic::error("E0001", "bad token", "big.goal", 10_000..10_003);
+        let d = Diagnostic::error("E0009", "bad token", "big.goal", 10_000..10_003);
         let text = d.render(&src);
+        assert!(
+            text.contains("= for more, run goal explain E0009"),
+            "{text}"
+        );
         assert!(text.contains("big.goal:1:10001"), "{text}");
         assert!(text.contains("...") && text.contains("^^^"), "{text}");
         assert!(text.len() < 1_000, "{}", text.len());
+    }
+
+    #[test]
+    fn map_codes_have_no_explain_footer() {
+        let d = Diagnostic::error("M0013", "rooms overlap", "m.toml", 0..1);
+        let text = d.render("x = 1\n");
+        assert!(text.contains("error[M0013]"), "{text}");
+        assert!(!text.contains("goal explain"), "{text}");
     }
 
     #[test]

@@ -46,6 +46,10 @@ enum Command {
     Why(cli::why::Args),
     /// Replay a recorded trace in the browser (prints the page's local address).
     View(cli::view::Args),
+    /// Explain a diagnostic code (E0121, W0110, ...) with a wrong and a fixed example.
+    Explain(cli::explain::Args),
+    /// Create a ready project (a .mas2g, agents, a .test2g and a README) from a template.
+    New(cli::new::Args),
 }
 
 fn main() -> ExitCode {
@@ -60,5 +64,7 @@ fn main() -> ExitCode {
         Command::Grade(args) => cli::grade::main(args),
         Command::Why(args) => cli::why::main(args),
         Command::View(args) => cli::view::main(args),
+        Command::New(args) => cli::new::main(args),
+        Command::Explain(args) => cli::explain::main(args),
     }
 }

@@ -1,5 +1,5 @@
-//! The validator (§11): every program in `agents/` has no errors, and one negative fixture per
-//! error and warning code (rendered diagnostics snapshotted, code and line:column asserted).
+//! The validator (docs/language.md, "What goal check checks"): every program in `agents/` has no
+//! errors, and one negative fixture per error and warning code (rendered diagnostics snapshotted, code and line:column asserted).
 
 use goal::diag::Diagnostic;
 use goal::syntax::{goal::parse_goal, validate::validate};

@@ -244,7 +244,7 @@ impl World {
                 self.robots[r].stats.deliveries_wrong += 1;
             }
         } else if let Some(room) = self.room_at(&pos) {
-            // The seed's intent: the block lands within a small tolerance of the robot.
+            // The interface's intent: the block lands within a small tolerance of the robot.
             let rect = self.zones[room].rect;
             let dx: f64 = rand::Rng::gen_range(&mut self.rng, -0.5..0.5);
             let dy: f64 = rand::Rng::gen_range(&mut self.rng, -0.5..0.5);

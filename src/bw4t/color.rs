@@ -1,4 +1,4 @@
-//! Block colours: the seed's nine plus `DarkGray`, which colour-blind robots see.
+//! Block colours: the nine of the BW4T 3 interface and `DarkGray`, which colour-blind robots see.
 
 use serde::{Deserialize, Serialize};
 

@@ -1,4 +1,4 @@
-//! The BW4T message vocabulary of the seed as data: each message's logical form, its CLAMR
+//! The BW4T message vocabulary as data: each message's logical form, its CLAMR
 //! speech-act type and its English sentence, with [`describe`] to put a message into words.
 //!
 //! Patterns use slots: `Me` (the sender, or the atom `me`), `Player`, `Place`, `Room` (atoms),
@@ -45,7 +45,7 @@ const fn m(pattern: &'static str, act: SpeechAct, sentence: &'static str) -> Mes
 
 use SpeechAct::*;
 
-/// The seed's message list, in the order patterns are tried.
+/// The message list, in the order patterns are tried.
 pub const MESSAGES: &[Message] = &[
     m("imp(in(Me,Place))", Offer, "I am going to {Place}"),
     m(

@@ -4,11 +4,11 @@
 //! blocks in rooms and deliver them to the drop zone in the order of the map's colour sequence.
 //! [`Bw4t`] implements [`crate::env::Environment`]; run it on its own thread with
 //! [`crate::env::thread::EnvHandle`]. Maps are TOML files ([`map`]), built in by name
-//! ([`map::builtin`]) or imported from BW4T XML ([`xml::import`]). Behaviour follows the seed
-//! (the BW4T3 agent-environment interface); users read docs/environments.md.
+//! ([`map::builtin`]) or imported from BW4T XML ([`xml::import`]). Behaviour follows the BW4T 3
+//! agent-environment interface; users read docs/bw4t.md and docs/environments.md.
 //!
 //! Also here: [`greedy`], a scripted percept-driven player used as a smoke test and benchmark,
-//! and [`messages`], the seed's message vocabulary with speech acts and English sentences.
+//! and [`messages`], the message vocabulary with speech acts and English sentences.
 //!
 //! Time is ticks. Within a tick, robots move in entity order: 0.25 units per tick at the
 //! default speed, one idle tick at every waypoint, arrival tolerance 0.001. Actions take effect
@@ -25,14 +25,14 @@
 //! * the size-overload/speed handicaps are plain settings ([`RobotConfig`]) rather than BW4T
 //!   bot-configuration files.
 //!
-//! ## Deliberate deviations from the Java implementation (BW4T 3.10.1)
-//! * Percept types follow the seed: `in`, `atBlock`, `occupied`, `holding`, `player` are
+//! ## Deliberate deviations from the Java implementation (BW4T 3.10.1), also in docs/bw4t.md
+//! * Percept types follow the interface: `in`, `atBlock`, `occupied`, `holding`, `player` are
 //!   on-change-with-negation and produce `not(p)` when `p` stops holding; once-percepts only in
 //!   the first batch; on-change percepts re-send all instances of the predicate on any change.
-//! * `message(Sender, Content)` has the seed's two arguments (Java: one list) and is an
+//! * `message(Sender, Content)` has the interface's two arguments (Java: one list) and is an
 //!   always-percept of the messages received since the last batch (drained on reading);
 //!   `sendMessage(all, M)` reaches every *other* robot; content may be any term.
-//! * Colours are the seed's nine plus `DarkGray` (Java: `Dark_gray`), seen by colour-blind robots.
+//! * Colours: the interface's nine plus `DarkGray` (Java: `Dark_gray`) (colour-blind view).
 //! * Entities are `Bot1, Bot2, ...` (Java: `Bot_1`); asking for more robots than spawn points
 //!   creates none of the extra ones (a warning), instead of killing the spawn thread.
 //! * A block put down in a room lands within 0.5 of the robot (Java: anywhere in the room).

@@ -1,4 +1,4 @@
-//! The robot percepts of the BW4T interface with the seed's types and term shapes.
+//! The robot percepts of the BW4T 3 interface, with its types and term shapes (docs/bw4t.md).
 
 use super::color::Color;
 use super::world::{BlockState, World};

@@ -115,7 +115,7 @@ fn load_files(files: &[PathBuf], seed: u64) -> Result<engine::Kb, ()> {
             });
             match located {
                 Some((name, text, c)) => {
-                    let d = Diagnostic::error("E0300", message, name.clone(), c.spans.span.clone());
+                    let d = Diagnostic::error("E0400", message, name.clone(), c.spans.span.clone());
                     eprint!("{}", d.render(text));
                 }
                 None => eprintln!("error: {message}"),

@@ -2,11 +2,23 @@
 //! `.goal`/`.mod2g`/`.pl` files and file access, `E01xx`/`W01xx` the validator, `E02xx`/`W02xx`
 //! `.mas2g` files, `E03xx`/`W03xx` `.test2g` files, `E04xx`/`W04xx` compiling a program to run it,
 //! `E06xx`/`W06xx` modular GOAL and MARBEL (`.mod2g` modules, `.act2g` files and the modular
-//! `.mas2g` forms).
+//! `.mas2g` forms). Each code has a page, `docs/diagnostics/CODE.md`, embedded here for
+//! `goal explain`.
 
-/// `(code, meaning)` for every diagnostic code, sorted by code.
+/// Defines [`CODES`] and, from the same list, the embedded pages (so neither can miss a code).
+macro_rules! table {
+    ($(($code:literal, $meaning:literal),)*) => {
+        /// `(code, meaning)` for every diagnostic code, sorted by code.
+        pub const CODES: &[(&str, &str)] = &[$(($code, $meaning)),*];
+        /// The page of every code, in the order of [`CODES`].
+        const PAGES: &[&str] = &[$(
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/diagnostics/", $code, ".md"))
+        ),*];
+    };
+}
+
 #[rustfmt::skip]
-pub const CODES: &[(&str, &str)] = &[
+table! {
     ("E0009", "unexpected character at GOAL level"),
     ("E0010", "Prolog syntax error in KR content or a .pl file (the Prolog reader)"),
     ("E0011", "unterminated quoted atom, string or back-quoted string"),
@@ -137,11 +149,16 @@ pub const CODES: &[(&str, &str)] = &[
     ("W0609", "a `.pl` line `p/1.` that looks like a declaration cut off by `.`"),
     ("W0610", "a MARBEL `goal(..)` literal reads the database's goal/1 predicate"),
     ("W0611", "a MARBEL percept declaration whose predicate nothing reads"),
-];
+}
 
 /// The meaning of a code, if it is known.
 pub fn describe(code: &str) -> Option<&'static str> {
     CODES.iter().find(|(c, _)| *c == code).map(|(_, d)| *d)
+}
+
+/// The page of a code (Markdown: what it means, a wrong and a fixed example), if it is known.
+pub fn page(code: &str) -> Option<&'static str> {
+    CODES.iter().position(|(c, _)| *c == code).map(|i| PAGES[i])
 }
 
 #[cfg(test)]

@@ -1,5 +1,5 @@
 % The initial database of the reference BW4T team: rules, and the facts the robot starts with.
-% How the team splits the work: see ../team.goal.
+% README.md says how the team splits the work.
 :- dynamic target/1, going/2, fetching/3, holding/2, count/3, checked/1, route/3.
 
 % Where the last movement action was going (a place or block(Id)); none yet.

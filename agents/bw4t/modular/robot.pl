@@ -1,5 +1,5 @@
 % Knowledge of the reference BW4T team (shared by every module of the robot).
-% The map, the task and the team: see ../team.goal for how the team splits the work.
+% The map, the task and the team; README.md says how the team splits the work.
 
 % ---- The map ----
 % A room (where blocks are) is a zone whose name starts with Room: the interface does not

@@ -30,6 +30,8 @@ pub fn parse_goal(file: &str, src: &str) -> (AgentProgram, Vec<Diagnostic>) {
     lexer.give_up = b.give_up.clone();
     let result = grammar::AgentParser::new().parse(&mut b, &mut lexer);
     b.take_reader_warnings();
+    // The builder stops recording syntax errors at the cap; the file then still says so.
+    let gave_up = b.give_up.get();
     let mut diags = std::mem::take(&mut b.diagnostics);
     let items = match result {
         Ok(items) => items,
@@ -44,8 +46,11 @@ pub fn parse_goal(file: &str, src: &str) -> (AgentProgram, Vec<Diagnostic>) {
     }
     diags.extend(lexer.diagnostics);
     diags.sort_by_key(|d| (d.span.start, d.span.end));
-    if diags.len() > MAX_DIAGNOSTICS {
-        let at = diags[MAX_DIAGNOSTICS].span.clone();
+    if diags.len() > MAX_DIAGNOSTICS || gave_up {
+        let at = diags
+            .get(MAX_DIAGNOSTICS)
+            .or(diags.last())
+            .map_or(0..0, |d| d.span.clone());
         diags.truncate(MAX_DIAGNOSTICS);
         diags.push(
             Diagnostic::error(

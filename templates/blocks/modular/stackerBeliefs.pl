@@ -1,0 +1,2 @@
+% Where the blocks are when the stacker starts.
+on(a, b). on(b, table). on(c, table). on(d, c).

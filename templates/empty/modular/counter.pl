@@ -1,0 +1,3 @@
+% What the counter knows: the last number it counts to.
+:- dynamic count/1.
+target(100).

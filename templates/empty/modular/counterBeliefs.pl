@@ -1,0 +1,2 @@
+% The counter starts at 0.
+count(0).

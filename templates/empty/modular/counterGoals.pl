@@ -1,0 +1,2 @@
+% The counter wants to be done.
+done.
