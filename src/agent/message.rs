@@ -83,6 +83,10 @@ impl Core {
             });
         }
         let wrapped = wrap_mood(mood, c);
+        crate::clamr::content::validate(&wrapped).map_err(|e| Fault {
+            message: format!("message content: {e}"),
+            binding: Some(show_subst(s)),
+        })?;
         let record = self.level >= TraceLevel::Changes;
         let mut ev = Vec::new();
         for r in self.receivers(to, s)? {
@@ -96,6 +100,7 @@ impl Core {
             if once && self.ms.mailbox.has_sent(&rt, &wrapped) {
                 continue;
             }
+            self.converse(&self.name.clone(), &r, &wrapped);
             if record {
                 ev.push(Event::MessageSent {
                     to: rt.to_string(),
@@ -127,6 +132,35 @@ impl Core {
         Ok(Outcome::Done { real: true })
     }
 
+    /// Follows the conversation a message from `from` to `to` belongs to, keeping the
+    /// `session/4` facts in the mailbox up to date (no trace events: runtime bookkeeping).
+    fn converse(&mut self, from: &str, to: &str, content: &Term) {
+        use crate::clamr::session::Change;
+        let act = crate::clamr::classify(from, content);
+        let book = &mut self.ms.mailbox.sessions;
+        let changes = book.observe(from, to, content, &act, 0);
+        for c in changes {
+            let (i, old) = match c {
+                Change::Opened(i) => (i, None),
+                Change::Moved(i, old) => (i, Some(old)),
+                Change::Violation(_) => continue,
+            };
+            let Some(s) = self.ms.mailbox.sessions.get(i) else {
+                continue;
+            };
+            let new = s.fact(&self.name);
+            let old = old.map(|state| {
+                let mut was = s.clone();
+                was.state = state;
+                was.fact(&self.name)
+            });
+            if let Some(f) = old {
+                self.ms.mailbox.delete(&f);
+            }
+            self.ms.mailbox.insert(new);
+        }
+    }
+
     /// Stores incoming messages as `received(Sender, Content)` and updates the senders' mental
     /// models; true when there were any.
     pub fn receive(&mut self, messages: &[Message]) -> Result<bool, Fault> {
@@ -134,6 +168,7 @@ impl Core {
         let mut ev = Vec::new();
         for m in messages {
             self.ms.update_model(&m.sender, &m.content)?;
+            self.converse(&m.sender, &m.receiver, &m.content);
             let f = received(&Term::atom(&m.sender), &m.content);
             if record {
                 if self.ms.mailbox.insert(f.clone()) {
