@@ -386,8 +386,8 @@ fn speech_acts_of_the_bw4t_vocabulary() {
             .pattern
             .replace("Me", "'Bot1'")
             .replace("Player", "'Bot2'")
-            .replace("Place", "'RoomA1'")
-            .replace("Room", "'RoomA1'")
+            .replace("Room", "r1")
+            .replace("Place", "r2")
             .replace("Color", "'Red'")
             .replace("Block", "3")
             .replace('N', "2");
@@ -450,4 +450,77 @@ fn bw4t_team_completes_over_both_transports_with_sessions() {
             assert!(json["comm"]["frames"].as_u64() > Some(0));
         }
     }
+}
+
+#[test]
+fn following_sessions_leaves_the_default_trace_unchanged() {
+    let pingpong = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("agents/pingpong/pingpong.mas2g");
+    let base = RunOptions {
+        max_ticks: 200,
+        workers: 1,
+        ..RunOptions::default()
+    };
+    let plain = run_mas(pingpong.clone(), base.clone());
+    let followed = run_mas(
+        pingpong,
+        RunOptions {
+            comm: CommOptions {
+                sessions: true,
+                ..CommOptions::default()
+            },
+            ..base
+        },
+    );
+    assert_eq!(plain.trace, followed.trace);
+    assert!(plain.summary.sessions.is_none() && plain.summary.comm.is_none());
+    let s = followed.summary.sessions.expect("sessions");
+    assert_eq!(s.by_act.get("query"), Some(&1), "{s:?}");
+    // Pong answers the score question, but never acknowledges ping's `!play`.
+    assert_eq!((s.completed, s.abandoned), (s.opened - 1, 1), "{s:?}");
+    assert_eq!(s.response_ticks.answered, 1, "{s:?}");
+}
+
+fn goal_run(args: &[&str]) -> (Option<i32>, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_goal"))
+        .arg("run")
+        .args(args)
+        .output()
+        .expect("goal runs");
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn cli_ring_faults_and_stats() {
+    let mas = fixture("temperature.mas2g");
+    let mas = mas.to_str().expect("path");
+    let (code, err) = goal_run(&[mas, "--comm-loss", "0.1"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("add --comm ring"), "{err}");
+    let (code, err) = goal_run(&[mas, "--comm", "ring", "--comm-fail", "nobody@3"]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(err.contains("there is no agent nobody"), "{err}");
+    let dir = std::env::temp_dir().join(format!("clamr-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let stats = dir.join("s.json");
+    let (code, err) = goal_run(&[
+        mas,
+        "--comm",
+        "ring",
+        "--comm-fail",
+        "robot1@0",
+        "--stats",
+        stats.to_str().expect("path"),
+    ]);
+    assert!(err.contains("robot1's link failed at tick 0"), "{err}");
+    assert!(err.contains("ring re-formed"), "{err}");
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&stats).expect("stats")).expect("json");
+    assert_eq!(s["sessions"]["completed"], 1, "{s}");
+    assert_eq!(s["comm"]["failed"], serde_json::json!(["robot1"]), "{s}");
+    assert_eq!(s["comm"]["lost"], 0, "{s}");
+    assert_eq!(code, Some(0), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

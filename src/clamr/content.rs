@@ -173,6 +173,24 @@ pub fn uses_forms(t: &Term) -> bool {
     false
 }
 
+/// The English reading of a whole message (mood-wrapped content), when it uses the content
+/// language.
+pub fn english_message(content: &Term) -> Option<String> {
+    if !uses_forms(content) {
+        return None;
+    }
+    let a = content.args();
+    Some(match content.functor() {
+        Some((f, 1)) if f == crate::term::well_known::IMP => format!("please {}", english(&a[0])),
+        Some((f, 1)) if f == crate::term::well_known::INT => format!("{}?", english(&a[0])),
+        Some((f, 1)) if f.name() == "offer" => format!("I offer to {}", english(&a[0])),
+        Some((f, 2)) if f.name() == "requestWhen" => {
+            format!("when I signal {}, {}", plain(&a[1]), english(&a[0]))
+        }
+        _ => english(content),
+    })
+}
+
 /// Text of a term that is not a form (unquoted).
 fn plain(t: &Term) -> String {
     t.to_text(Style::WRITE)

@@ -74,6 +74,8 @@ pub struct Session {
     pub opening: String,
     /// The message that closed it, with its tick.
     pub closing: Option<(String, u64)>,
+    /// The last message that moved it on.
+    pub latest: String,
 }
 
 impl Session {
@@ -150,8 +152,6 @@ pub struct Book {
     counts: BTreeMap<(String, String), u64>,
     /// The last message per (sender, receiver), to name it in a violation.
     last: BTreeMap<(String, String), (String, u64)>,
-    /// The session each pair's last answer closed (for "double answer").
-    closed_by: BTreeMap<(String, String), usize>,
     /// Track Inform sessions (the runtime does; an agent's own book does not list them).
     pub informs: bool,
     violations: u64,
@@ -198,7 +198,10 @@ impl Book {
             match self.find(to, from, |s| {
                 s.kind == SpeechAct::Query && s.state == State::Open
             }) {
-                Some(i) => Some(self.moved(i, State::Completed, &text, tick)),
+                Some(i) => {
+                    self.sessions[i].answered = Some(tick);
+                    Some(self.moved(i, State::Completed, &text, tick))
+                }
                 None if self.informs => Some(self.open(from, to, act.sat, &text, tick)),
                 None => None,
             }
@@ -254,6 +257,7 @@ impl Book {
             closed: None,
             opening: text.to_string(),
             closing: None,
+            latest: text.to_string(),
         });
         self.open.entry(key(from, to)).or_default().push(i);
         Change::Opened(i)
@@ -277,15 +281,13 @@ impl Book {
         let s = &mut self.sessions[i];
         let from = s.state;
         s.state = to;
+        s.latest = text.to_string();
         if to.closed() {
             s.closed = Some(tick);
             s.closing = Some((text.to_string(), tick));
             let k = key(&s.initiator, &s.partner);
             if let Some(v) = self.open.get_mut(&k) {
                 v.retain(|&j| j != i);
-            }
-            if to != State::Abandoned {
-                self.closed_by.insert(k, i);
             }
         }
         Change::Moved(i, from)
@@ -345,7 +347,30 @@ impl Book {
 
     fn violation(&mut self, from: &str, to: &str, a: Answer, text: &str, tick: u64) -> Change {
         self.violations += 1;
-        let k = key(to, from);
+        let answerable = |k: SpeechAct| match a {
+            Answer::Done | Answer::Failed | Answer::Status => {
+                matches!(k, SpeechAct::Request | SpeechAct::RequestWhen)
+            }
+            Answer::Accept | Answer::Refuse => {
+                matches!(
+                    k,
+                    SpeechAct::Request | SpeechAct::RequestWhen | SpeechAct::Offer
+                )
+            }
+            Answer::Admit | Answer::Ok => k == SpeechAct::Query,
+        };
+        // The conversation this answer most recently ended.
+        let answered_before = self
+            .sessions
+            .iter()
+            .filter(|s| {
+                s.initiator == to
+                    && s.partner == from
+                    && s.state.closed()
+                    && s.state != State::Abandoned
+                    && answerable(s.kind)
+            })
+            .max_by_key(|s| s.closed);
         let waiting_signal = self
             .find(to, from, |s| s.kind == SpeechAct::RequestWhen)
             .map(|i| &self.sessions[i]);
@@ -357,7 +382,7 @@ impl Book {
                 s.opening,
                 s.opened
             )
-        } else if let Some(s) = self.closed_by.get(&k).map(|&i| &self.sessions[i]) {
+        } else if let Some(s) = answered_before {
             let (by, at) = s.closing.clone().unwrap_or_default();
             format!(
                 "double answer: session {} ({} {}) was already answered by {by} (tick {at})",

@@ -195,10 +195,6 @@ impl Comm {
         let Some(s) = self.book.get(i) else {
             return Value::Null;
         };
-        let by = match c {
-            Change::Opened(_) => Some(s.opening.clone()),
-            _ => s.closing.as_ref().map(|(m, _)| m.clone()),
-        };
         json!({
             "event": event,
             "id": s.id,
@@ -206,7 +202,7 @@ impl Comm {
             "initiator": s.initiator,
             "partner": s.partner,
             "state": s.state.name(),
-            "message": by,
+            "message": s.latest,
             "opened": s.opened,
             "closed": s.closed,
         })
