@@ -524,3 +524,21 @@ fn cli_ring_faults_and_stats() {
     assert_eq!(code, Some(0), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_session_token_keeps_the_conversation_with_one_partner() {
+    let mut ring = Ring::new(&names(4), &Faults::default(), 1).expect("ring");
+    // Bot1 holds the token first and requests something of Bot3: Bot3 gets a session token.
+    let c = ring.carry(0, vec![msg("Bot1", "Bot3", "imp(stop)")]);
+    assert!(c.arrived.is_empty(), "two hops to Bot3");
+    // Bot3 has a message for Bot4 (one hop) and its answer for Bot1 (two hops): under the
+    // session token only the answer leaves; the message to Bot4 waits for the general token.
+    let plan = vec![vec![
+        msg("Bot3", "Bot4", "x"),
+        msg("Bot3", "Bot1", "ack(refuse,stop)"),
+    ]];
+    let (arrived, lost) = drive(&mut ring, &plan, 12);
+    assert!(lost.is_empty());
+    let order: Vec<String> = arrived.iter().map(|m| m.content.to_string()).collect();
+    assert_eq!(order, ["imp(stop)", "ack(refuse,stop)", "x"]);
+}

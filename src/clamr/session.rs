@@ -189,12 +189,17 @@ impl Book {
         act: &Act,
         tick: u64,
     ) -> Vec<Change> {
+        let plain_inform = act.answer.is_none() && !act.signal && act.sat == SpeechAct::Inform;
+        if plain_inform && !self.informs && self.open.is_empty() {
+            // An agent's own book: an Inform matters only as the answer to an open query.
+            return Vec::new();
+        }
         let text = content.to_string();
         let change = if let Some(answer) = act.answer {
             self.answer(from, to, answer, &text, tick)
         } else if act.signal {
             self.signal(from, to, &text, tick)
-        } else if act.sat == SpeechAct::Inform {
+        } else if plain_inform {
             match self.find(to, from, |s| {
                 s.kind == SpeechAct::Query && s.state == State::Open
             }) {
@@ -208,7 +213,10 @@ impl Book {
         } else {
             Some(self.open(from, to, act.sat, &text, tick))
         };
-        self.last.insert(key(from, to), (text, tick));
+        if self.informs {
+            // The runtime's book names earlier messages in its warnings.
+            self.last.insert(key(from, to), (text, tick));
+        }
         change.into_iter().collect()
     }
 
@@ -288,6 +296,9 @@ impl Book {
             let k = key(&s.initiator, &s.partner);
             if let Some(v) = self.open.get_mut(&k) {
                 v.retain(|&j| j != i);
+                if v.is_empty() {
+                    self.open.remove(&k);
+                }
             }
         }
         Change::Moved(i, from)
