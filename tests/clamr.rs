@@ -399,7 +399,22 @@ fn speech_acts_of_the_bw4t_vocabulary() {
             m.act
         };
         assert_eq!(act.sat, expected, "{}", m.pattern);
+        assert_eq!(
+            goal::mas::vocabulary::act("Bot1", &t).sat,
+            m.act,
+            "{}",
+            m.pattern
+        );
     }
+    // The wishes of the vocabulary name BW4T's actions.
+    let go = goal::mas::vocabulary::act("Bot1", &term("imp(in('Bot2', 'RoomA1'))"));
+    assert_eq!(
+        (go.sat, go.action.map(|p| p.name)),
+        (SpeechAct::Request, Some("goTo"))
+    );
+    assert_eq!(go.params, [term("'Bot2'"), term("'RoomA1'")]);
+    let get = goal::mas::vocabulary::act("Bot1", &term("imp(holding('Bot2', 'Red'))"));
+    assert_eq!(get.action.map(|p| p.name), Some("pickUp"));
 }
 
 fn bw4t_team(kind: Kind) -> RunSummary {
@@ -438,6 +453,10 @@ fn bw4t_team_completes_over_both_transports_with_sessions() {
         assert_eq!(s.deliveries.wrong, 0);
         let sessions = s.sessions.as_ref().expect("sessions");
         assert!(sessions.opened > 0, "{kind:?}: {sessions:?}");
+        assert_eq!(
+            sessions.violations, 0,
+            "{kind:?}: the team keeps to the protocols"
+        );
         assert_eq!(
             sessions.opened,
             sessions.by_act.values().sum::<u64>(),

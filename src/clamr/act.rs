@@ -220,7 +220,8 @@ const PLAIN_ANSWERS: &[(&str, Answer)] = &[
     ("delayed", Answer::Status),
     ("faraway", Answer::Status),
     ("almostthere", Answer::Status),
-    ("couldnot", Answer::Failed),
+    // "I could not": the team answers offers and requests with it.
+    ("couldnot", Answer::Refuse),
 ];
 
 /// The answer named by the first argument of `ack/1,2`.
@@ -360,7 +361,7 @@ mod tests {
         assert_eq!(read("r3", "ack(refuse, x)").answer, Some(Answer::Refuse));
         assert_eq!(read("r3", "ack(ok)").answer, Some(Answer::Ok));
         assert_eq!(read("r3", "yes").answer, Some(Answer::Admit));
-        assert_eq!(read("r3", "couldnot").answer, Some(Answer::Failed));
+        assert_eq!(read("r3", "couldnot").answer, Some(Answer::Refuse));
         assert_eq!(read("r3", "ack(maybe, x)").sat, SpeechAct::Inform);
     }
 
