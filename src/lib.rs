@@ -7,6 +7,7 @@ pub mod agent;
 pub mod bench;
 pub mod blocksworld;
 pub mod bw4t;
+pub mod clamr;
 pub mod diag;
 pub mod env;
 pub mod grade;

@@ -20,6 +20,8 @@ pub struct Message {
 #[derive(Clone, Debug, Default)]
 pub struct Mailbox {
     facts: FactBase,
+    /// The agent's conversations (their `session/4` facts are among `facts`).
+    pub sessions: crate::clamr::session::Book,
 }
 
 /// True for `received/2` and `sent/2` facts (which insert/delete route to the mailbox).

@@ -85,6 +85,10 @@ impl Core {
             });
         }
         let wrapped = wrap_mood(mood, c);
+        crate::clamr::content::validate(&wrapped).map_err(|e| Fault {
+            message: format!("message content: {e}"),
+            binding: Some(show_subst(s)),
+        })?;
         let record = self.level >= TraceLevel::Changes;
         let mut ev = Vec::new();
         for r in self.receivers(to, s)? {
@@ -102,6 +106,7 @@ impl Core {
             if once && self.ms.mailbox.has_sent(&rt, &wrapped) {
                 continue;
             }
+            self.converse(&self.name.clone(), &r, &wrapped);
             if record {
                 ev.push(Event::MessageSent {
                     to: rt.to_string(),
@@ -152,6 +157,35 @@ impl Core {
         }
     }
 
+    /// Follows the conversation a message from `from` to `to` belongs to, keeping the
+    /// `session/4` facts in the mailbox up to date (no trace events: runtime bookkeeping).
+    fn converse(&mut self, from: &str, to: &str, content: &Term) {
+        use crate::clamr::session::Change;
+        let act = crate::clamr::classify(from, content);
+        let book = &mut self.ms.mailbox.sessions;
+        let changes = book.observe(from, to, content, &act, 0);
+        for c in changes {
+            let (i, old) = match c {
+                Change::Opened(i) => (i, None),
+                Change::Moved(i, old) => (i, Some(old)),
+                Change::Violation(_) => continue,
+            };
+            let Some(s) = self.ms.mailbox.sessions.get(i) else {
+                continue;
+            };
+            let new = s.fact(&self.name);
+            let old = old.map(|state| {
+                let mut was = s.clone();
+                was.state = state;
+                was.fact(&self.name)
+            });
+            if let Some(f) = old {
+                self.ms.mailbox.delete(&f);
+            }
+            self.ms.mailbox.insert(new);
+        }
+    }
+
     /// Stores incoming messages as `received(Sender, Content)` and updates the senders' mental
     /// models; true when there were any.
     pub fn receive(&mut self, messages: &[Message]) -> Result<bool, Fault> {
@@ -163,6 +197,7 @@ impl Core {
                 continue;
             };
             self.ms.update_model(&m.sender, &content)?;
+            self.converse(&m.sender, &m.receiver, &content);
             let f = received(&Term::atom(&m.sender), &content);
             if record {
                 if self.ms.mailbox.insert(f.clone()) {

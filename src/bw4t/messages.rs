@@ -10,20 +10,8 @@ use super::color::Color;
 use crate::term::{Style, Term};
 use serde::Serialize;
 
-/// CLAMR speech-act types.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-pub enum SpeechAct {
-    /// Tell something.
-    Inform,
-    /// Request a performance.
-    Request,
-    /// Ask for information.
-    Query,
-    /// Accept a proposal, answer a question, or notify of a status.
-    Acknowledge,
-    /// Offer to perform in the future.
-    Offer,
-}
+/// CLAMR speech-act types (defined with the communicative acts).
+pub use crate::clamr::act::SpeechAct;
 
 /// One message of the vocabulary.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]

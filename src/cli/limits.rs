@@ -33,6 +33,11 @@ pub fn seconds(s: &str) -> Result<f64, String> {
     number_in(s, 0.001, MAX_SECONDS, "a number of seconds")
 }
 
+/// A probability: 0 to 1.
+pub fn probability(s: &str) -> Result<f64, String> {
+    number_in(s, 0.0, 1.0, "a probability")
+}
+
 /// A rate in ticks per second: 0.001 to 1000000.
 pub fn rate(s: &str) -> Result<f64, String> {
     number_in(s, 0.001, 1e6, "a number of ticks per second")

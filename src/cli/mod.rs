@@ -3,8 +3,8 @@
 pub mod bench;
 pub mod check;
 pub mod exit;
-pub mod grade;
 pub mod explain;
+pub mod grade;
 pub mod limits;
 pub mod new;
 pub mod prolog;

@@ -78,6 +78,18 @@ pub struct Args {
     /// paced for watching; the page can pause, step and change the speed.
     #[arg(long, value_name = "ADDR:PORT", num_args = 0..=1, default_missing_value = server::DEFAULT_ADDR)]
     pub view: Option<String>,
+    /// How messages travel: `in-process` (default) or `ring`, the simulated token ring.
+    #[arg(long, value_parser = ["in-process", "ring"], default_value = "in-process")]
+    pub comm: String,
+    /// Ring fault: AGENT's link fails at TICK (`Bot2@500`; repeatable; needs --comm ring).
+    #[arg(long, value_name = "AGENT@TICK", value_parser = goal::clamr::transport::parse_fail)]
+    pub comm_fail: Vec<(String, u64)>,
+    /// Ring fault: each message is lost with this probability (0 to 1; seeded; needs --comm ring).
+    #[arg(long, value_parser = limits::probability)]
+    pub comm_loss: Option<f64>,
+    /// Write the conversations' session records into the trace (see docs/trace-format.md).
+    #[arg(long)]
+    pub trace_sessions: bool,
 }
 
 struct Console {
@@ -289,6 +301,19 @@ fn options(args: &Args, sys: &MasSystem, stop: &Arc<AtomicUsize>) -> RunOptions 
     if let Some(w) = args.workers {
         opts.workers = w;
     }
+    opts.comm = goal::clamr::CommOptions {
+        kind: if args.comm == "ring" {
+            goal::clamr::transport::Kind::Ring
+        } else {
+            goal::clamr::transport::Kind::InProcess
+        },
+        faults: goal::clamr::ring::Faults {
+            fail: args.comm_fail.clone(),
+            loss: args.comm_loss.unwrap_or(0.0),
+        },
+        sessions: args.stats.is_some(),
+        trace_sessions: args.trace_sessions,
+    };
     opts
 }
 
@@ -305,6 +330,12 @@ fn view_file_as_system(args: &mut Args) {
 /// Runs `goal run`.
 pub fn main(mut args: Args) -> ExitCode {
     view_file_as_system(&mut args);
+    if args.comm != "ring" && (!args.comm_fail.is_empty() || args.comm_loss.is_some()) {
+        eprintln!(
+            "error: --comm-fail and --comm-loss inject faults into the token ring; add --comm ring"
+        );
+        return exit::code(exit::USAGE);
+    }
     let single = args
         .file
         .as_ref()

@@ -41,6 +41,8 @@ pub struct RunOptions {
     pub max_mailbox: usize,
     /// Most messages one agent may send in one cycle (more: runtime error of that agent).
     pub max_sent: usize,
+    /// The transport and session options (CLAMR); default: in-process, nothing followed.
+    pub comm: crate::clamr::CommOptions,
 }
 
 /// Default of [`RunOptions::max_memory`]: 4 GiB.
@@ -66,6 +68,7 @@ impl Default for RunOptions {
             max_beliefs: crate::agent::DEFAULT_MAX_BELIEFS,
             max_mailbox: DEFAULT_MAX_MAILBOX,
             max_sent: DEFAULT_MAX_MAILBOX,
+            comm: crate::clamr::CommOptions::default(),
         }
     }
 }

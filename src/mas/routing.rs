@@ -1,5 +1,7 @@
 //! Message routing: messages collected in a round are delivered for the next round in (sender
-//! name, sequence) order; messages to unknown agents are reported, not delivered.
+//! name, sequence) order; messages to unknown agents are reported, not delivered. Under the
+//! routing sits a [`Transport`]: in-process delivery by default, or a simulated network
+//! (`clamr::ring`) that may delay or lose messages.
 
 use crate::agent::Message;
 use std::collections::BTreeMap;
@@ -40,6 +42,47 @@ impl Router {
             }
         }
         unknown
+    }
+}
+
+/// What a transport did with messages in one round.
+#[derive(Debug, Default)]
+pub struct Carried {
+    /// Messages arriving now (delivered for the next round), in arrival order.
+    pub arrived: Vec<Message>,
+    /// Messages the transport lost.
+    pub lost: Vec<Message>,
+    /// What happened on the network worth a warning (e.g. a ring re-formed).
+    pub notes: Vec<String>,
+}
+
+/// How messages travel between agents.
+pub trait Transport: Send {
+    /// Takes the round's sent messages (in (sender, sequence) order) at `tick`; returns what
+    /// arrives now and what was lost.
+    fn carry(&mut self, tick: u64, sent: Vec<Message>) -> Carried;
+    /// True while messages are on their way (the run is not idle).
+    fn busy(&self) -> bool;
+    /// The transport's figures for `--stats`.
+    fn stats(&self) -> serde_json::Value;
+}
+
+/// In-process delivery: every message arrives at once, in sending order.
+#[derive(Debug, Default)]
+pub struct InProcess;
+
+impl Transport for InProcess {
+    fn carry(&mut self, _tick: u64, sent: Vec<Message>) -> Carried {
+        Carried {
+            arrived: sent,
+            ..Carried::default()
+        }
+    }
+    fn busy(&self) -> bool {
+        false
+    }
+    fn stats(&self) -> serde_json::Value {
+        serde_json::json!({"transport": "in-process", "lost": 0})
     }
 }
 

@@ -87,6 +87,8 @@ struct Setup<'a> {
     pool: Pool,
     slots: Vec<Slot>,
     router: Router,
+    /// The communication layer (CLAMR transport and sessions); `None` on the default path.
+    comm: Option<crate::clamr::Comm>,
     by_entity: BTreeMap<String, Vec<usize>>,
     initial: Vec<(String, Vec<Term>)>,
     /// Slots with something new (acted, percepts or messages): with idle skipping only these
@@ -193,6 +195,8 @@ impl<'a> Setup<'a> {
         };
         let slots_len = slots.len();
         let pool = Pool::new(agents, opts.workers).map_err(|e| problem("M0033", e.0))?;
+        let comm =
+            crate::clamr::Comm::new(&names, &opts.comm, seed).map_err(|e| problem("M0034", e))?;
         Ok(Setup {
             system,
             opts,
@@ -201,6 +205,7 @@ impl<'a> Setup<'a> {
             env,
             pool,
             router: Router::new(&names),
+            comm,
             slots,
             ready: (0..slots_len).collect(),
             by_entity,
@@ -320,7 +325,7 @@ impl<'a> Setup<'a> {
                     s.stats.idle_ticks += 1;
                 }
             }
-            if due == 0 && self.env.is_none() {
+            if due == 0 && self.env.is_none() && !self.comm.as_ref().is_some_and(|c| c.busy()) {
                 break if alive == 0 {
                     EndReason::AllStopped
                 } else {
@@ -427,6 +432,17 @@ impl<'a> Setup<'a> {
             // Messages: (sender, sequence) order; a stable sort keeps each sender's sequence.
             sent.sort_by(|a, b| a.sender.cmp(&b.sender));
             messages += sent.len() as u64;
+            if let Some(c) = self.comm.as_mut() {
+                let mut warn = |w: &str| obs.warning(w);
+                let (arrived, lost) = c.carry((round, tick), sent, trace.as_mut(), &mut warn);
+                for m in &lost {
+                    if let Some(t) = trace.as_mut() {
+                        t.message(round, tick, m, false);
+                    }
+                    obs.message(round, m, false);
+                }
+                sent = arrived;
+            }
             for m in sent {
                 let receiver = self.router.index(&m.receiver);
                 let full = receiver.is_some_and(|j| self.mailbox_full(j, round, tick, obs));
@@ -519,6 +535,14 @@ impl<'a> Setup<'a> {
             self.pool.with_agent(i, |a| obs.ended(i, a, end));
         }
         let (deliveries, env_stats) = self.env_status();
+        let (sessions, comm) = match self.comm.as_mut() {
+            Some(c) => {
+                let mut warn = |w: &str| obs.warning(w);
+                let (s, t) = c.finish((round, tick), trace.as_mut(), &mut warn);
+                (Some(s), Some(t))
+            }
+            None => (None, None),
+        };
         let summary = RunSummary {
             completed: end == EndReason::Completed,
             end,
@@ -534,6 +558,8 @@ impl<'a> Setup<'a> {
                 .map(|s| (s.name.clone(), s.stats.clone()))
                 .collect(),
             env: env_stats,
+            sessions,
+            comm,
         };
         let err = match trace {
             Some(mut t) => {

@@ -104,6 +104,12 @@ pub struct RunSummary {
     pub agents: BTreeMap<String, AgentStats>,
     /// The environment's own statistics, if there is one.
     pub env: Option<serde_json::Value>,
+    /// Conversations, when followed (`--stats`, `--comm`, `--trace-sessions`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sessions: Option<crate::clamr::session::SessionStats>,
+    /// The transport's figures (messages lost, frames), when not the plain in-process one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub comm: Option<serde_json::Value>,
 }
 
 impl RunSummary {

@@ -211,6 +211,15 @@ impl TraceWriter {
         }));
     }
 
+    /// A record of another kind (`session`, `network`: see `docs/trace-format.md`) with `fields`.
+    pub fn record(&mut self, kind: &str, round: u64, tick: u64, fields: Value) {
+        let mut v = json!({"type": kind, "round": round, "tick": tick});
+        if let (Some(o), Value::Object(f)) = (v.as_object_mut(), fields) {
+            o.extend(f);
+        }
+        self.line(v);
+    }
+
     /// The last line: why the run ended and its summary.
     pub fn end(&mut self, summary: Value) {
         let mut v = json!({"type": "end"});

@@ -29,27 +29,20 @@ pub fn read(sender: &str, content: &Term) -> Reading {
         },
         None => Reading {
             logical_form,
-            act: act_of_mood(sender, content),
-            english: None,
+            act: crate::clamr::classify(sender, content).sat,
+            english: crate::clamr::content::english_message(content),
         },
     }
 }
 
-/// The speech act of a message outside the vocabulary, from its mood: an imperative about the
-/// sender itself is an offer, about anyone else a request.
-fn act_of_mood(sender: &str, content: &Term) -> SpeechAct {
-    match content.functor() {
-        Some((f, 1)) if f.name() == "imp" => {
-            let about_sender = matches!(content.args()[0].args().first(), Some(Term::Atom(a)) if a.name() == sender);
-            if about_sender {
-                SpeechAct::Offer
-            } else {
-                SpeechAct::Request
-            }
-        }
-        Some((f, 1)) if f.name() == "int" => SpeechAct::Query,
-        _ => SpeechAct::Inform,
+/// The communicative act of a message (speech act, action, parameters): BW4T's vocabulary
+/// gives the speech act of its messages, CLAMR's reading the rest.
+pub fn act(sender: &str, content: &Term) -> crate::clamr::Act {
+    let mut act = crate::clamr::classify(sender, content);
+    if let Some((sat, _)) = describe_from(Some(sender), content) {
+        act.sat = sat;
     }
+    act
 }
 
 #[cfg(test)]

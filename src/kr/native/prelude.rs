@@ -153,7 +153,11 @@ aggregate(set(E), G, S) :- !, '$aggr_template'(G, E, G1, E1), setof(E1, G1, S).
 /// The prelude clauses.
 pub(crate) fn clauses() -> Vec<Term> {
     let mut reader = Reader::new("<kr prelude>");
-    let (items, errors) = reader.clauses(PRELUDE, 0);
+    let (mut items, errors) = reader.clauses(PRELUDE, 0);
     debug_assert!(errors.is_empty(), "prelude: {errors:?}");
+    // The content language's constraint tests (`satisfies/2`), kept with the language.
+    let (clamr, errors) = reader.clauses(crate::clamr::content::LIBRARY, 0);
+    debug_assert!(errors.is_empty(), "clamr library: {errors:?}");
+    items.extend(clamr);
     items.into_iter().map(|l| l.term).collect()
 }

@@ -163,13 +163,15 @@ const BUILTINS: &[(&str, Option<usize>)] = &[
     ("tab", Some(1)),
 ];
 
-/// Predicates every agent has: percepts (`newpercept/1`: the batch of this cycle), mail, and the
+/// Predicates every agent has: percepts (`newpercept/1`: the batch of this cycle), mail, the
+/// agent's conversations (`session(Id, With, Act, State)`, see docs/communication.md), and the
 /// agent facts.
 const RESERVED: &[(&str, usize)] = &[
     ("percept", 1),
     ("newpercept", 1),
     ("received", 2),
     ("sent", 2),
+    ("session", 4),
     ("agent", 1),
     ("me", 1),
 ];
