@@ -14,10 +14,3 @@ pub mod mas;
 pub mod syntax;
 pub mod term;
 pub mod testing;
-
-/// The process allocator: mimalloc. Agents allocate and free many small terms and
-/// substitutions per cycle; mimalloc's thread-local free lists cut ring1's allocation cost by
-/// about a third over the system allocator (README, Performance). In the library so that the
-/// `goal` binary, the tests and the benchmarks all measure the same allocator.
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
