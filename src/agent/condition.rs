@@ -3,7 +3,7 @@
 
 use super::error::Fault;
 use super::goals::Goal;
-use super::mental_state::MentalState;
+use super::mental_state::{GoalQuery, MentalState};
 use super::program::Lit;
 use crate::syntax::ast::MentalOp;
 use crate::term::{Subst, Term};
@@ -163,17 +163,21 @@ fn literal(
             raw.items = found;
         }
         (MentalOp::Goal | MentalOp::AGoal | MentalOp::GoalA, None) => {
-            let single;
-            let goals: &[Goal] = match (top_level, cx.only) {
-                (true, _) => ms.attention.top_level().goals(),
-                (false, Some(g)) => {
-                    single = [g.clone()];
-                    &single
-                }
-                (false, None) => ms.attention.current().goals(),
+            let gq = GoalQuery::new(&ms.knowledge, &q);
+            let base = match (top_level, cx.only) {
+                (true, _) => Some(ms.attention.top_level()),
+                (false, Some(_)) => None,
+                (false, None) => Some(ms.attention.current()),
+            };
+            // When only goal facts answer the query, the goals without a fact of its
+            // predicate have no answer: look at the others alone (the base's index).
+            let goals: Vec<&Goal> = match (base, gq.fact_predicate()) {
+                (Some(b), Some((name, arity))) => b.with_predicate(name, arity).collect(),
+                (Some(b), None) => b.goals().iter().collect(),
+                (None, _) => cx.only.into_iter().collect(),
             };
             for g in goals {
-                let (found, stopped) = ms.in_goal_upto(g, &q, cap)?;
+                let (found, stopped) = ms.in_goal_prepared(g, &gq, cap)?;
                 *cut |= stopped;
                 for a in found {
                     if *op != MentalOp::Goal {

@@ -1,6 +1,7 @@
 //! Goals: single goals (conjunctions of ground facts), goal bases and the attention stack.
 
-use crate::term::Term;
+use crate::kr::fxhash::FxHashMap;
+use crate::term::{Sym, Term};
 use std::sync::Arc;
 
 /// One goal: a conjunction of ground facts, queried as its own database plus knowledge.
@@ -23,10 +24,14 @@ impl Goal {
     }
 }
 
-/// A set of single goals in adoption order.
+/// A set of single goals in adoption order, indexed by the predicates of their facts.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct GoalBase {
     goals: Vec<Goal>,
+    /// For each predicate `name/arity`, the positions (ascending) of the goals with a fact of
+    /// it: a goal condition on a predicate only knowledge-free facts answer looks at these
+    /// goals alone instead of querying every goal.
+    preds: FxHashMap<(Sym, u32), Vec<u32>>,
 }
 
 impl GoalBase {
@@ -46,13 +51,32 @@ impl GoalBase {
     pub fn contains(&self, t: &Term) -> bool {
         self.goals.iter().any(|g| &g.term == t)
     }
+    /// The goals with a fact of predicate `name/arity`, in adoption order.
+    pub fn with_predicate(&self, name: Sym, arity: usize) -> impl Iterator<Item = &Goal> + '_ {
+        self.preds
+            .get(&(name, arity as u32))
+            .map_or(&[][..], |v| &v[..])
+            .iter()
+            .map(|&i| &self.goals[i as usize])
+    }
     /// Adds a goal unless present; true when added.
     pub fn add(&mut self, g: Goal) -> bool {
         if self.contains(&g.term) {
             return false;
         }
+        self.index(self.goals.len(), &g);
         self.goals.push(g);
         true
+    }
+    fn index(&mut self, pos: usize, g: &Goal) {
+        for f in g.facts.iter() {
+            if let Some((name, arity)) = f.functor() {
+                let at = self.preds.entry((name, arity as u32)).or_default();
+                if at.last() != Some(&(pos as u32)) {
+                    at.push(pos as u32);
+                }
+            }
+        }
     }
     /// Removes the goals for which `pred` holds, returning them in order.
     pub fn remove_where(&mut self, mut pred: impl FnMut(&Goal) -> bool) -> Vec<Goal> {
@@ -65,6 +89,14 @@ impl GoalBase {
                 true
             }
         });
+        if !removed.is_empty() {
+            self.preds.clear();
+            let goals = std::mem::take(&mut self.goals);
+            for (i, g) in goals.iter().enumerate() {
+                self.index(i, g);
+            }
+            self.goals = goals;
+        }
         removed
     }
 }
@@ -119,5 +151,41 @@ impl AttentionStack {
     /// Number of bases on the stack.
     pub fn depth(&self) -> usize {
         self.bases.len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn goal(text: &str) -> Goal {
+        let mut r = crate::syntax::prolog::Reader::new("test");
+        Goal::new(r.term(text, 0).expect("term").term)
+    }
+
+    fn names(it: impl Iterator<Item = Goal>) -> Vec<String> {
+        it.map(|g| g.term.to_string()).collect()
+    }
+
+    #[test]
+    fn goals_are_found_by_predicate_in_adoption_order_after_removals() {
+        let mut b = GoalBase::default();
+        for t in ["fib(3)", "round(2)", "(fib(2), fib(1))", "fib(0)", "done"] {
+            assert!(b.add(goal(t)));
+        }
+        assert!(!b.add(goal("fib(3)")));
+        let fib = Sym::intern("fib");
+        let by = |b: &GoalBase| names(b.with_predicate(fib, 1).cloned());
+        assert_eq!(by(&b), ["fib(3)", "fib(2),fib(1)", "fib(0)"]);
+        assert_eq!(
+            names(b.with_predicate(Sym::intern("done"), 0).cloned()),
+            ["done"]
+        );
+        assert_eq!(b.with_predicate(fib, 2).count(), 0);
+        let gone = b.remove_where(|g| g.term.to_string() == "fib(3)");
+        assert_eq!(gone.len(), 1);
+        assert_eq!(by(&b), ["fib(2),fib(1)", "fib(0)"]);
+        assert!(b.add(goal("fib(5)")));
+        assert_eq!(by(&b), ["fib(2),fib(1)", "fib(0)", "fib(5)"]);
     }
 }

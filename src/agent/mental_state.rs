@@ -207,16 +207,26 @@ impl MentalState {
         q: &Term,
         cap: usize,
     ) -> Result<(Vec<Subst>, bool), Fault> {
-        if let Some(answers) = goal_facts_only(&self.knowledge, g, q) {
+        self.in_goal_prepared(g, &GoalQuery::new(&self.knowledge, q), cap)
+    }
+
+    /// [`MentalState::in_goal_upto`] for a query prepared once for many goals.
+    pub fn in_goal_prepared(
+        &self,
+        g: &Goal,
+        gq: &GoalQuery<'_>,
+        cap: usize,
+    ) -> Result<(Vec<Subst>, bool), Fault> {
+        if let Some(answers) = gq.facts_only(g) {
             return Ok((answers, false));
         }
         let view = View::goal(&self.knowledge, &g.facts);
-        self.run(|e| e.query_upto(&view, q, cap), q)
+        self.run(|e| e.query_upto(&view, gq.query, cap), gq.query)
     }
 
     /// True when one goal's facts plus knowledge entail `q`.
     pub fn goal_holds(&self, g: &Goal, q: &Term) -> Result<bool, Fault> {
-        if let Some(answers) = goal_facts_only(&self.knowledge, g, q) {
+        if let Some(answers) = GoalQuery::new(&self.knowledge, q).facts_only(g) {
             return Ok(!answers.is_empty());
         }
         let view = View::goal(&self.knowledge, &g.facts);
@@ -393,36 +403,70 @@ impl MentalState {
     }
 }
 
-/// The answers of a one-literal query over a goal's facts by plain unification, when the goal
-/// has facts of the query's predicate and knowledge does not define it (then the engine would
-/// only match those facts too). `a-goal` conditions query every goal of the attention set, so
-/// skipping the engine here matters for agents with many goals. `None`: ask the engine.
-fn goal_facts_only(knowledge: &Knowledge, g: &Goal, q: &Term) -> Option<Vec<Subst>> {
-    let key = q.functor()?;
-    if !g.facts.iter().any(|f| f.functor() == Some(key)) || knowledge.defines(key.0, key.1) {
-        return None;
-    }
-    // Answers bind the query's variables in reading order, as the engine's answers do.
-    let vars: Vec<_> = q
-        .vars()
-        .into_iter()
-        .filter(|v| *v != wk::UNDERSCORE)
-        .collect();
-    let mut out: Vec<Subst> = Vec::new();
-    for f in g.facts.iter().filter(|f| f.functor() == Some(key)) {
-        let mut s = Subst::new();
-        if s.unify(q, f, false) {
-            let mut a = Subst::new();
-            for v in &vars {
-                let t = s.apply(&Term::Var(*v));
-                if t != Term::Var(*v) {
-                    a.bind(*v, t);
-                }
-            }
-            if !out.contains(&a) {
-                out.push(a);
-            }
+/// A query about goals, prepared once for all the goals it is asked of.
+pub struct GoalQuery<'q> {
+    /// The query.
+    pub query: &'q Term,
+    /// Its predicate, when knowledge does not define it (then only goal facts or built-ins
+    /// answer it).
+    key: Option<(crate::term::Sym, usize)>,
+    /// True when nothing but goal facts can answer it: neither knowledge nor a built-in or
+    /// control construct resolves its predicate (an undefined predicate fails).
+    pub only_facts: bool,
+    /// The query's named variables in reading order, as the engine binds them.
+    vars: Vec<crate::term::Sym>,
+}
+
+impl<'q> GoalQuery<'q> {
+    /// Prepares `q` against `knowledge`.
+    pub fn new(knowledge: &Knowledge, q: &'q Term) -> GoalQuery<'q> {
+        let key = q.functor().filter(|k| !knowledge.defines(k.0, k.1));
+        GoalQuery {
+            query: q,
+            key,
+            only_facts: key.is_some_and(|k| !knowledge.resolves(k.0, k.1)),
+            vars: if key.is_some() {
+                q.vars()
+                    .into_iter()
+                    .filter(|v| *v != wk::UNDERSCORE)
+                    .collect()
+            } else {
+                Vec::new()
+            },
         }
     }
-    Some(out)
+
+    /// The predicate of the query when only goal facts answer it (a goal without facts of it
+    /// has no answer).
+    pub fn fact_predicate(&self) -> Option<(crate::term::Sym, usize)> {
+        self.key.filter(|_| self.only_facts)
+    }
+
+    /// The answers of a one-literal query over a goal's facts by plain unification, when the
+    /// goal has facts of the query's predicate and knowledge does not define it (then the
+    /// engine would only match those facts too). `None`: ask the engine.
+    fn facts_only(&self, g: &Goal) -> Option<Vec<Subst>> {
+        let key = self.key?;
+        if !g.facts.iter().any(|f| f.functor() == Some(key)) {
+            return None;
+        }
+        let mut out: Vec<Subst> = Vec::new();
+        for f in g.facts.iter().filter(|f| f.functor() == Some(key)) {
+            let mut s = Subst::new();
+            if s.unify(self.query, f, false) {
+                // Answers bind the query's variables in reading order, as the engine's do.
+                let mut a = Subst::new();
+                for v in &self.vars {
+                    let t = s.apply(&Term::Var(*v));
+                    if t != Term::Var(*v) {
+                        a.bind(*v, t);
+                    }
+                }
+                if !out.contains(&a) {
+                    out.push(a);
+                }
+            }
+        }
+        Some(out)
+    }
 }

@@ -177,6 +177,7 @@ pub fn run(params: &Params) -> Result<Report, String> {
         count: percepts,
         unit: "percepts",
         cycles: steps,
+        cpu: None,
         peak_rss_kib: rss::peak_kib(),
         extra: vec![(
             "per cycle".into(),

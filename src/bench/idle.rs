@@ -63,6 +63,7 @@ pub fn run(params: &Params, workers: usize) -> Result<Report, String> {
         count: n as u64,
         unit: "agents",
         cycles: n as u64,
+        cpu: None,
         peak_rss_kib: rss::peak_kib(),
         extra: vec![(
             "per agent".into(),

@@ -4,6 +4,7 @@
 //! creation time, run time, throughput, peak RSS and whether the run finished correctly.
 
 pub mod bufenv;
+pub mod cpu;
 pub mod idle;
 pub mod params;
 pub mod reason;
@@ -82,8 +83,19 @@ pub fn set_fact(text: &str, old: &str, new: &str) -> Result<String, String> {
     }
 }
 
-/// Runs benchmark `name` with `params` on `workers` worker threads.
+/// Runs benchmark `name` with `params` on `workers` worker threads; the report carries the
+/// CPU time the process spent on it.
 pub fn run(name: &str, params: &Params, workers: usize) -> Result<Report, String> {
+    let before = cpu::process_time();
+    let mut report = run_named(name, params, workers)?;
+    report.cpu = match (before, cpu::process_time()) {
+        (Some(b), Some(a)) => Some(a.saturating_sub(b)),
+        _ => None,
+    };
+    Ok(report)
+}
+
+fn run_named(name: &str, params: &Params, workers: usize) -> Result<Report, String> {
     match name {
         "ring1" => ring::run("ring1", params, workers, 1),
         "ring50" => ring::run("ring50", params, workers, 50),

@@ -97,6 +97,7 @@ pub fn fib(params: &Params) -> Result<Report, String> {
         count: goals,
         unit: "sub-goals",
         cycles,
+        cpu: None,
         peak_rss_kib: rss::peak_kib(),
         extra: vec![(
             "per goal".into(),
@@ -150,6 +151,7 @@ pub fn knowledge(params: &Params) -> Result<Report, String> {
         count: answers,
         unit: "answers",
         cycles,
+        cpu: None,
         peak_rss_kib: rss::peak_kib(),
         extra: vec![(
             "per query".into(),

@@ -64,6 +64,8 @@ pub struct Report {
     pub unit: &'static str,
     /// Reasoning cycles run by all agents together.
     pub cycles: u64,
+    /// CPU time (user + system, all threads) of creation and run together, when known.
+    pub cpu: Option<Duration>,
     /// Peak resident set size of the process (VmHWM), KiB.
     pub peak_rss_kib: Option<u64>,
     /// Further figures: label and value.
@@ -101,7 +103,18 @@ impl Report {
         let _ = writeln!(o, "workers     {}", self.workers);
         let _ = writeln!(o, "creation    {}", secs(self.create));
         let _ = writeln!(o, "run         {}", secs(self.run));
-        let _ = writeln!(o, "wall        {}", secs(self.create + self.run));
+        let wall = self.create + self.run;
+        let _ = writeln!(o, "wall        {}", secs(wall));
+        if let Some(cpu) = self.cpu {
+            let per = cpu.as_secs_f64() * 1e6 / (self.count.max(1) as f64);
+            let _ = writeln!(
+                o,
+                "cpu         {} ({:.2} CPUs; {per:.3} µs per {})",
+                secs(cpu),
+                cpu.as_secs_f64() / wall.as_secs_f64().max(1e-9),
+                self.unit.trim_end_matches('s')
+            );
+        }
         let _ = writeln!(o, "{:<11} {}", self.unit, self.count);
         let _ = writeln!(o, "{:<11} {}/s", "rate", si(self.rate()));
         if self.cycles > 0 {
@@ -181,6 +194,7 @@ mod tests {
             count: 1000,
             unit: "messages",
             run: Duration::from_millis(500),
+            cpu: Some(Duration::from_millis(250)),
             targets: vec![t],
             ..Report::default()
         };
@@ -188,6 +202,10 @@ mod tests {
         let text = r.render();
         assert!(text.contains("2.0 k/s"), "{text}");
         assert!(text.contains("met (x2.00)"), "{text}");
+        assert!(
+            text.contains("cpu         0.250 s (0.50 CPUs; 250.000 µs per message)"),
+            "{text}"
+        );
         assert_eq!(si(5.5e6), "5.50 M");
     }
 }

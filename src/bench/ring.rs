@@ -112,6 +112,7 @@ pub fn run(name: &str, params: &Params, workers: usize, tokens: u64) -> Result<R
         count: hop_messages,
         unit: "hops",
         cycles,
+        cpu: None,
         peak_rss_kib: rss::peak_kib(),
         extra: vec![
             ("rounds".into(), summary.rounds.to_string()),

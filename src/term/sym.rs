@@ -2,6 +2,7 @@
 
 use std::collections::HashMap;
 use std::fmt;
+use std::sync::atomic::{AtomicPtr, Ordering};
 use std::sync::{OnceLock, RwLock};
 
 /// An interned atom (or functor, or variable) name.
@@ -105,6 +106,7 @@ fn interner() -> &'static RwLock<Interner> {
             let sym = Sym(interner.names.len() as u32);
             interner.names.push(name);
             interner.ids.insert(name, sym);
+            publish(sym.0 as usize, name);
         }
         RwLock::new(interner)
     })
@@ -114,12 +116,60 @@ fn interner() -> &'static RwLock<Interner> {
 /// backstop over the per-agent budgets: about 90 bytes each, so some 700 MB at most).
 pub const MAX_SYMS: usize = 8_000_000;
 
+/// Names per chunk of the lock-free name table.
+const CHUNK: usize = 1 << 12;
+/// Chunks of the lock-free name table: room for [`MAX_SYMS`] names and the predefined ones
+/// (names interned from program text beyond that are read under the lock).
+const CHUNKS: usize = MAX_SYMS / CHUNK + 2;
+
+/// One chunk of the name table: each slot points at a leaked name, or is null.
+type Chunk = [AtomicPtr<&'static str>; CHUNK];
+
+/// The names by symbol number, readable without the interner's lock: [`Sym::name`] runs on
+/// every term written, compared or hashed by name, from every worker thread at once. Slots are
+/// written once, under the interner's write lock, before the symbol is handed out.
+static NAMES: [AtomicPtr<Chunk>; CHUNKS] = [const { AtomicPtr::new(std::ptr::null_mut()) }; CHUNKS];
+
+/// Publishes `name` as the text of symbol number `i` in [`NAMES`] (caller holds the write lock).
+fn publish(i: usize, name: &'static str) {
+    let Some(chunk_slot) = NAMES.get(i / CHUNK) else {
+        return;
+    };
+    let mut chunk = chunk_slot.load(Ordering::Acquire);
+    if chunk.is_null() {
+        let fresh: Box<Chunk> =
+            Box::new(std::array::from_fn(
+                |_| AtomicPtr::new(std::ptr::null_mut()),
+            ));
+        chunk = Box::into_raw(fresh);
+        chunk_slot.store(chunk, Ordering::Release);
+    }
+    let text: &'static mut &'static str = Box::leak(Box::new(name));
+    // SAFETY: chunks are never freed once published.
+    unsafe { (*chunk)[i % CHUNK].store(text, Ordering::Release) };
+}
+
+/// The text of symbol number `i` from [`NAMES`], when published there.
+fn published(i: usize) -> Option<&'static str> {
+    let chunk = NAMES.get(i / CHUNK)?.load(Ordering::Acquire);
+    if chunk.is_null() {
+        return None;
+    }
+    // SAFETY: chunks and the names they point at are leaked, never freed or rewritten.
+    let text = unsafe { (*chunk)[i % CHUNK].load(Ordering::Acquire) };
+    if text.is_null() {
+        return None;
+    }
+    Some(unsafe { *text })
+}
+
 /// Adds `name`, not yet interned, to the table.
 fn add(guard: &mut Interner, name: &str) -> Sym {
     let leaked: &'static str = Box::leak(name.to_owned().into_boxed_str());
     let sym = Sym(guard.names.len() as u32);
     guard.names.push(leaked);
     guard.ids.insert(leaked, sym);
+    publish(sym.0 as usize, leaked);
     sym
 }
 
@@ -172,8 +222,11 @@ impl Sym {
         Some((add(&mut guard, name), true))
     }
 
-    /// The text of this symbol.
+    /// The text of this symbol (without taking the interner's lock).
     pub fn name(self) -> &'static str {
+        if let Some(name) = published(self.0 as usize) {
+            return name;
+        }
         interner().read().unwrap_or_else(|e| e.into_inner()).names[self.0 as usize]
     }
 }
@@ -217,6 +270,24 @@ mod tests {
         assert_eq!(a, Sym::intern("RoomA1"));
         assert_eq!(a.name(), "RoomA1");
         assert_ne!(a, Sym::intern("RoomA2"));
+    }
+
+    #[test]
+    fn names_are_read_from_other_threads() {
+        let syms: Vec<Sym> = (0..3 * CHUNK / 2)
+            .map(|i| Sym::intern(&format!("sym_test_thread_{i}")))
+            .collect();
+        let names = std::thread::spawn(move || {
+            syms.iter()
+                .map(|s| s.name().to_string())
+                .collect::<Vec<_>>()
+        })
+        .join()
+        .expect("reader thread");
+        for (i, n) in names.iter().enumerate() {
+            assert_eq!(n, &format!("sym_test_thread_{i}"));
+        }
+        assert_eq!(well_known::UNDERSCORE.name(), "_");
     }
 
     #[test]
