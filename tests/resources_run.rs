@@ -62,7 +62,16 @@ const MAX_PEAK_KIB: u64 = 500 * 1024;
 #[test]
 fn a_runaway_agent_stops_with_a_located_error_and_the_others_finish() {
     let mas = fixture("runaway.mas2g");
-    let r = goal(&["run", "--workers", "2", mas.to_str().unwrap()]);
+    // Building the deep term takes seconds in a debug build: a generous cycle quota keeps a
+    // loaded machine from cutting it.
+    let r = goal(&[
+        "run",
+        "--workers",
+        "2",
+        "--cycle-time",
+        "120",
+        mas.to_str().unwrap(),
+    ]);
     let all = format!("{}{}", r.stdout, r.stderr);
     assert_eq!(r.stdout.matches("counted to 30").count(), 2, "{all}");
     assert!(
@@ -77,7 +86,16 @@ fn a_runaway_agent_stops_with_a_located_error_and_the_others_finish() {
 #[test]
 fn an_agent_making_new_atoms_every_cycle_meets_its_atom_budget_and_the_others_finish() {
     let mas = fixture("atoms.mas2g");
-    let r = goal(&["run", "--workers", "2", mas.to_str().unwrap()]);
+    // Building the deep term takes seconds in a debug build: a generous cycle quota keeps a
+    // loaded machine from cutting it.
+    let r = goal(&[
+        "run",
+        "--workers",
+        "2",
+        "--cycle-time",
+        "120",
+        mas.to_str().unwrap(),
+    ]);
     let all = format!("{}{}", r.stdout, r.stderr);
     assert!(r.stdout.contains("counted to 30"), "{all}");
     // Seven cycles remaking the same 200000 atoms: 1400000 atoms made, 200000 of them new.
@@ -96,7 +114,16 @@ fn an_agent_making_new_atoms_every_cycle_meets_its_atom_budget_and_the_others_fi
 #[test]
 fn an_agent_with_a_million_deep_term_works_beside_the_others() {
     let mas = fixture("deep.mas2g");
-    let r = goal(&["run", "--workers", "2", mas.to_str().unwrap()]);
+    // Building the deep term takes seconds in a debug build: a generous cycle quota keeps a
+    // loaded machine from cutting it.
+    let r = goal(&[
+        "run",
+        "--workers",
+        "2",
+        "--cycle-time",
+        "120",
+        mas.to_str().unwrap(),
+    ]);
     let all = format!("{}{}", r.stdout, r.stderr);
     assert!(r.success, "{all}");
     assert!(
@@ -238,7 +265,16 @@ fn agents_with_long_lists_deep_terms_and_long_operator_chains_run_on_worker_thre
     )
     .unwrap();
     let mas = dir.join("big.mas2g");
-    let r = goal(&["run", "--workers", "2", mas.to_str().unwrap()]);
+    // Building the deep term takes seconds in a debug build: a generous cycle quota keeps a
+    // loaded machine from cutting it.
+    let r = goal(&[
+        "run",
+        "--workers",
+        "2",
+        "--cycle-time",
+        "120",
+        mas.to_str().unwrap(),
+    ]);
     let all = format!("{}{}", r.stdout, r.stderr);
     assert!(r.success, "{all}");
     assert_eq!(r.stdout.matches("all").count(), 2, "{all}");

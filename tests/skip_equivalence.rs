@@ -65,6 +65,9 @@ fn traced(sys: &MasSystem, skip: bool, ticks: u64) -> Option<(RunSummary, String
         max_ticks: ticks,
         workers: 2,
         skip_idle: skip,
+        // A generous quota: the default 10 s could cut a cycle on a loaded machine in one of
+        // the two runs only, which is timing, not skipping.
+        cycle_time: Some(std::time::Duration::from_secs(120)),
         ..RunOptions::default()
     };
     let (summary, err) = run(
