@@ -32,10 +32,6 @@ const NOT_BY_FILE_CHECK: &[(&str, &str)] = &[
         "E0413",
         "found while compiling (and by `goal test` for a `do` of a missing module); `goal check` reports E0104",
     ),
-    (
-        "E0600",
-        "found when a system is loaded to run; `goal check` reports W0606 for the same file",
-    ),
 ];
 
 fn root() -> &'static Path {

@@ -287,6 +287,17 @@ fn the_why_panel_shows_the_answer_or_says_there_is_none() {
         dom.contains("The why answer is unavailable for this run"),
         "{dom}"
     );
+    // The real provider: the trace's run is rerun up to the tick and explained.
+    let real = goal::why::Why::for_trace(&trace).unwrap();
+    let real = serve("127.0.0.1:0", site(Some(Arc::new(real))), &mut notes).unwrap();
+    let dom = dump_dom(
+        &browser,
+        &dir.join("p3"),
+        &format!("{}?tick=12&agent=Bot2&why=1", real.url()),
+    );
+    assert!(dom.contains("Bot2 at tick 12, cycle"), "{dom}");
+    let explained = tags(&dom, "rule fired").len() + tags(&dom, "rule failed").len();
+    assert!(explained > 0, "{dom}");
     assert!(notes.is_empty());
     let _ = std::fs::remove_dir_all(&dir);
 }
