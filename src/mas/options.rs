@@ -41,6 +41,8 @@ pub struct RunOptions {
     pub max_mailbox: usize,
     /// Most messages one agent may send in one cycle (more: runtime error of that agent).
     pub max_sent: usize,
+    /// The KR engine of agents whose `.mas2g` entry does not choose one (`language`).
+    pub kr: crate::kr::KrKind,
 }
 
 /// Default of [`RunOptions::max_memory`]: 4 GiB.
@@ -66,6 +68,7 @@ impl Default for RunOptions {
             max_beliefs: crate::agent::DEFAULT_MAX_BELIEFS,
             max_mailbox: DEFAULT_MAX_MAILBOX,
             max_sent: DEFAULT_MAX_MAILBOX,
+            kr: crate::kr::KrKind::Native,
         }
     }
 }
