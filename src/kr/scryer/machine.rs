@@ -121,8 +121,9 @@ fn build(program: &str) -> Result<World, KrError> {
         World { machine, output }
     }))
     .map_err(|_| fault("scryer panicked while loading the knowledge"))
-    .and_then(|w| {
+    .and_then(|mut w| {
         // Loading writes warnings (discarded) and errors (which leave the machine unusable).
+        solve(&mut w.machine, &Term::atom("flush_output"))?;
         let said =
             String::from_utf8_lossy(&std::mem::take(&mut *w.output.borrow_mut())).into_owned();
         match said.lines().find(|l| l.contains("error")) {

@@ -12,6 +12,7 @@ not(G) :- \+ call(G).
 % an inference budget; errors come back as err(E), an exhausted budget as budget.
 '$goal_run'(T, G, Cap, Lim, R) :-
     catch(call_with_inference_limit('$goal_collect'(Cap, T, G, L), Lim, LR), E, true),
+    flush_output,
     (   nonvar(E) -> R = err(E)
     ;   LR == inference_limit_exceeded -> R = budget
     ;   R = ok(L)

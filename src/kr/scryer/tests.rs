@@ -1,7 +1,7 @@
 //! Tests of the scryer engine through the `Engine` trait.
 
 use super::*;
-use crate::kr::{FactBase, Knowledge};
+use crate::kr::{FactBase, Knowledge, KrError};
 use crate::syntax::prolog::Reader;
 
 fn terms(text: &str) -> Vec<Term> {
@@ -36,10 +36,12 @@ fn answers_beliefs_and_knowledge() {
     for f in ["block(a)", "block(b)", "on(a, b)"] {
         b.insert(term(f));
     }
-    let view = View::beliefs(&kn, &[&b]);
+    let bases = [&b];
+    let view = View::beliefs(&kn, &bases);
     assert_eq!(shown(&e.query(&view, &term("clear(X)")).unwrap()), ["X=a"]);
     b.delete(&term("on(a, b)"));
-    let view = View::beliefs(&kn, &[&b]);
+    let bases = [&b];
+    let view = View::beliefs(&kn, &bases);
     assert_eq!(
         shown(&e.query(&view, &term("clear(X)")).unwrap()),
         ["X=a", "X=b"]
@@ -98,8 +100,8 @@ fn budget_errors_and_output() {
     assert_eq!(e.take_output(), "hi\n");
     // Variables bound to each other, and unbound ones.
     assert_eq!(
-        shown(&e.query(&view, &term("X = Y, Z = f(_W)")).unwrap()),
-        ["Y=X,Z=f(_R1)"]
+        shown(&e.query(&view, &term("X = Y, Z = f(_W), V = g(_)")).unwrap()),
+        ["Y=X,Z=f(_W),V=g(_G1)"]
     );
 }
 
@@ -138,7 +140,8 @@ fn belief_churn_rebuilds_the_machine() {
     for i in 0..250 {
         b.delete(&Term::compound("at", vec![Term::Int(i - 1)]));
         b.insert(Term::compound("at", vec![Term::Int(i)]));
-        let view = View::beliefs(&kn, &[&b, &b]);
+        let bases = [&b, &b];
+        let view = View::beliefs(&kn, &bases);
         let a = e.query(&view, &term("at(X), block(B)")).unwrap();
         assert_eq!(shown(&a), vec![format!("X={i},B=a"); 4], "update {i}");
     }
