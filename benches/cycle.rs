@@ -16,6 +16,11 @@ fn agent(src: &str, trace: TraceLevel) -> Agent {
     let cfg = AgentConfig {
         seed: 1,
         trace,
+        // `CYCLE_BENCH_KR=scryer` measures the scryer engine.
+        kr: match std::env::var("CYCLE_BENCH_KR").as_deref() {
+            Ok("scryer") => goal::kr::KrKind::Scryer,
+            _ => goal::kr::KrKind::Native,
+        },
         ..AgentConfig::default()
     };
     Agent::new(p, "robot", cfg)

@@ -4,7 +4,7 @@
 
 use super::directory::Directory;
 use super::error::{Fault, RuntimeError};
-use super::kr_bridge::Limits;
+use super::kr_bridge::{AgentEngine, KrKind, Limits};
 use super::mailbox::Message;
 use super::mental_state::MentalState;
 use super::module::{Frame, ModFrame, RunEnd};
@@ -81,6 +81,8 @@ pub struct AgentConfig {
     pub max_beliefs: usize,
     /// Most messages one cycle may send; sending more is a runtime error.
     pub max_sent: usize,
+    /// The KR engine answering the agent's queries.
+    pub kr: KrKind,
 }
 
 /// Default of [`AgentConfig::cycle_time`].
@@ -101,6 +103,7 @@ impl Default for AgentConfig {
             cycle_time: None,
             max_beliefs: DEFAULT_MAX_BELIEFS,
             max_sent: usize::MAX,
+            kr: KrKind::Native,
         }
     }
 }
@@ -261,9 +264,20 @@ impl Agent {
             config.seed ^ 0x9e37_79b9_7f4a_7c15,
         );
         let mut ms = ms;
+        let engine = AgentEngine::new(
+            config.kr,
+            &program.knowledge,
+            config.seed ^ 0x9e37_79b9_7f4a_7c15,
+            config.limits,
+        );
+        let refused = engine.as_ref().err().cloned();
+        if let Ok(e) = engine {
+            ms.engine = std::cell::RefCell::new(e);
+        }
         ms.record = config.trace >= TraceLevel::Changes;
         ms.models.enabled = program.uses_models;
-        Agent {
+        let file = program.file.clone();
+        let mut agent = Agent {
             program,
             core: Core {
                 name: name.to_string(),
@@ -294,7 +308,17 @@ impl Agent {
             chance_before_main: 0,
             stopped: None,
             controlled: false,
+        };
+        if let Some(why) = refused {
+            agent.halt(RuntimeError {
+                file,
+                line: 0,
+                rule: None,
+                message: why,
+                binding: None,
+            });
         }
+        agent
     }
 
     /// The agent's name.
@@ -371,7 +395,7 @@ impl Agent {
     /// answers; `None`: wall-clock time.
     pub fn set_clock(&mut self, now: Option<f64>) {
         if let Ok(mut e) = self.core.ms.engine.try_borrow_mut() {
-            e.clock.now = now;
+            e.set_clock(now);
         }
     }
 
@@ -433,7 +457,11 @@ impl Agent {
             (a, b) => a.or(b),
         };
         // Long queries stop at the same deadline (the engine checks it as it goes).
-        self.core.ms.engine.borrow_mut().limits.deadline = self.core.deadline;
+        self.core
+            .ms
+            .engine
+            .borrow_mut()
+            .set_deadline(self.core.deadline);
         self.core.event(Event::CycleStart { cycle: self.cycle });
         match self.run_cycle(percepts, messages) {
             Ok(None) => {}

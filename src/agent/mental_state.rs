@@ -4,7 +4,9 @@
 use super::directory::Directory;
 use super::error::Fault;
 use super::goals::{AttentionStack, Goal, GoalBase};
-use super::kr_bridge::{Engine, FactBase, Knowledge, KrError, Limits, NativeEngine, View};
+use super::kr_bridge::{
+    AgentEngine, Engine, FactBase, Knowledge, KrError, Limits, NativeEngine, View,
+};
 use super::mailbox::{is_mail_fact, Mailbox};
 use super::models::Models;
 use super::percepts::PerceptBase;
@@ -27,7 +29,7 @@ pub struct MentalState {
     pub attention: AttentionStack,
     /// The KR engine (limits, its own seeded RNG and output buffer); interior mutability lets
     /// queries run while conditions hold a shared borrow of the state.
-    pub engine: RefCell<NativeEngine>,
+    pub engine: RefCell<AgentEngine>,
     /// Record change events (off when the trace level is `Off`, to save the printing).
     pub record: bool,
     /// Mental models of the other agents (kept when the program queries them).
@@ -60,7 +62,9 @@ impl MentalState {
             agents,
             me: facts,
             attention: AttentionStack::default(),
-            engine: RefCell::new(NativeEngine::new(seed).with_limits(limits)),
+            engine: RefCell::new(AgentEngine::Native(
+                NativeEngine::new(seed).with_limits(limits),
+            )),
             record: true,
             models: Models::new(match me {
                 Term::Atom(a) => a.name().to_string(),
@@ -272,7 +276,7 @@ impl MentalState {
 
     fn run<T>(
         &self,
-        f: impl FnOnce(&mut NativeEngine) -> Result<T, KrError>,
+        f: impl FnOnce(&mut AgentEngine) -> Result<T, KrError>,
         q: &Term,
     ) -> Result<T, Fault> {
         match self.engine.try_borrow_mut() {

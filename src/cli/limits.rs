@@ -90,3 +90,16 @@ mod tests {
         assert_eq!(escape_controls("\u{85}\u{7f}"), "\\x85\\x7f");
     }
 }
+
+/// A KR engine name for `--kr`: `native` or `scryer` (refused when the build lacks it).
+pub fn kr_engine(s: &str) -> Result<goal::kr::KrKind, String> {
+    match goal::kr::KrKind::parse(s)? {
+        Some(k) if k.available() => Ok(k),
+        Some(k) => Err(format!(
+            "this goal was built without the {} engine (cargo feature `{}`)",
+            k.name(),
+            k.name()
+        )),
+        None => Ok(goal::kr::KrKind::Native),
+    }
+}

@@ -24,11 +24,14 @@ pub struct Args {
     /// Seed of the random generator behind `random/1`, `random_between/3`, ... (default 0).
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    /// The KR engine: native (default) or scryer.
+    #[arg(long, default_value = "native", value_parser = super::limits::kr_engine)]
+    pub kr: goal::kr::KrKind,
 }
 
 /// Runs `goal prolog`.
 pub fn main(args: Args) -> ExitCode {
-    let kb = match load_files(&args.files, args.seed) {
+    let kb = match load_files(&args.files, args.seed, args.kr) {
         Ok(kb) => kb,
         Err(()) => return ExitCode::from(1),
     };
@@ -74,7 +77,7 @@ fn repl(kb: &engine::Kb, out: &mut impl Write) -> ExitCode {
 }
 
 /// Loads and compiles the files; prints diagnostics to stderr. `Err` when anything failed.
-fn load_files(files: &[PathBuf], seed: u64) -> Result<engine::Kb, ()> {
+fn load_files(files: &[PathBuf], seed: u64, kr: goal::kr::KrKind) -> Result<engine::Kb, ()> {
     let mut sources: Vec<(String, String, Vec<Located>)> = Vec::new();
     let mut failed = false;
     for path in files {
@@ -101,7 +104,7 @@ fn load_files(files: &[PathBuf], seed: u64) -> Result<engine::Kb, ()> {
         .iter()
         .flat_map(|(_, _, cs)| cs.iter().map(|c| c.term.clone()))
         .collect();
-    engine::Kb::load(&clauses, seed).map_err(|errors| {
+    engine::Kb::load(&clauses, seed, kr).map_err(|errors| {
         for (index, message) in errors {
             // Point at the clause in its file when the loader names one.
             let mut k = index;
@@ -210,7 +213,7 @@ pub fn error_line(error: &Term) -> String {
 /// The knowledge base behind the command: the native engine with the agents' default limits.
 mod engine {
     use goal::kr::native::library;
-    use goal::kr::{Engine, FactBase, Knowledge, KrError, NativeEngine, View};
+    use goal::kr::{AgentEngine, Engine, FactBase, Knowledge, KrError, KrKind, Limits, View};
     use goal::term::{Subst, Term};
     use std::cell::RefCell;
     use std::sync::Arc;
@@ -218,17 +221,25 @@ mod engine {
     /// Loaded knowledge and the engine that queries it.
     pub struct Kb {
         knowledge: Arc<Knowledge>,
-        engine: RefCell<NativeEngine>,
+        engine: RefCell<AgentEngine>,
     }
 
     impl Kb {
         /// Compiles clauses; on failure, (clause index, message) for every rejected clause.
-        pub fn load(clauses: &[Term], seed: u64) -> Result<Kb, Vec<(usize, String)>> {
-            match Knowledge::load(clauses) {
-                Ok(knowledge) => Ok(Kb {
-                    knowledge,
-                    engine: RefCell::new(NativeEngine::new(seed)),
-                }),
+        pub fn load(clauses: &[Term], seed: u64, kr: KrKind) -> Result<Kb, Vec<(usize, String)>> {
+            let loaded = match kr {
+                KrKind::Native => Knowledge::load(clauses),
+                KrKind::Scryer => goal::agent::kr_bridge::load_knowledge(clauses),
+            };
+            match loaded {
+                Ok(knowledge) => {
+                    let engine = AgentEngine::new(kr, &knowledge, seed, Limits::default())
+                        .map_err(|e| vec![(usize::MAX, e)])?;
+                    Ok(Kb {
+                        knowledge,
+                        engine: RefCell::new(engine),
+                    })
+                }
                 Err(KrError::Load(errors)) => {
                     Err(errors.into_iter().map(|e| (e.clause, e.message)).collect())
                 }
@@ -280,13 +291,23 @@ mod engine {
             let bases = [&empty];
             let view = View::beliefs(&self.knowledge, &bases);
             let mut engine = self.engine.borrow_mut();
-            let mut answers = Vec::new();
-            let result = engine.solve(&view, query, &mut |s| {
-                answers.push(s);
-                true
-            });
+            let (answers, error) = match &mut *engine {
+                // The native engine streams: answers found before an error are kept.
+                AgentEngine::Native(e) => {
+                    let mut answers = Vec::new();
+                    let result = e.solve(&view, query, &mut |s| {
+                        answers.push(s);
+                        true
+                    });
+                    (answers, result.err().map(|e| e.to_term()))
+                }
+                other => match other.query(&view, query) {
+                    Ok(answers) => (answers, None),
+                    Err(e) => (Vec::new(), Some(e.to_term())),
+                },
+            };
             let output = engine.take_output();
-            (answers, result.err().map(|e| e.to_term()), output)
+            (answers, error, output)
         }
     }
 }

@@ -90,6 +90,9 @@ pub struct Args {
     /// Write the conversations' session records into the trace (see docs/trace-format.md).
     #[arg(long)]
     pub trace_sessions: bool,
+    /// The KR engine of agents whose `.mas2g` entry has no `language`: native (default) or scryer.
+    #[arg(long, default_value = "native", value_parser = super::limits::kr_engine)]
+    pub kr: goal::kr::KrKind,
 }
 
 struct Console {
@@ -296,6 +299,7 @@ fn options(args: &Args, sys: &MasSystem, stop: &Arc<AtomicUsize>) -> RunOptions 
         max_beliefs: usize::try_from(args.max_beliefs).unwrap_or(usize::MAX),
         max_mailbox: usize::try_from(args.max_mailbox).unwrap_or(usize::MAX),
         max_sent: usize::try_from(args.max_sent).unwrap_or(usize::MAX),
+        kr: args.kr,
         ..RunOptions::default()
     };
     if let Some(w) = args.workers {

@@ -30,6 +30,9 @@ pub struct Args {
     /// Run seed (replaces the MAS file's or the golden trace's).
     #[arg(long)]
     pub seed: Option<u64>,
+    /// The KR engine of agents whose `.mas2g` entry has no `language`: native (default) or scryer.
+    #[arg(long, default_value = "native", value_parser = super::limits::kr_engine)]
+    pub kr: goal::kr::KrKind,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,
@@ -163,6 +166,7 @@ pub fn main(args: Args) -> ExitCode {
     }
     let mut opts = TestOptions {
         seed: args.seed,
+        kr: args.kr,
         ..TestOptions::default()
     };
     if let Some(t) = args.max_ticks {

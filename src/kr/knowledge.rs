@@ -256,6 +256,16 @@ impl Knowledge {
         Ok(Arc::new(k))
     }
 
+    /// Compiles `stand_ins` (see [`crate::kr::choice::native_stand_ins`]) but keeps `source`
+    /// as [`Knowledge::source`], for knowledge only the scryer engine runs as written.
+    pub fn load_as(source: &[Term], stand_ins: &[Term]) -> Result<Arc<Knowledge>, KrError> {
+        let mut k = Knowledge::load(stand_ins)?;
+        if let Some(k) = Arc::get_mut(&mut k) {
+            k.source = source.to_vec();
+        }
+        Ok(k)
+    }
+
     /// A knowledge base with no clauses and no names at all (the library starts from it).
     pub(crate) fn blank() -> Knowledge {
         Knowledge {

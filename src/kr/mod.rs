@@ -100,13 +100,17 @@
 //! use the engine's seeded ChaCha8 RNG. The solver's buffers are per thread and reused by every
 //! query, so an agent only holds its [`NativeEngine`] (limits, RNG, output buffer).
 
+pub mod choice;
 pub mod error;
 pub mod factbase;
 pub(crate) mod fxhash;
 pub mod knowledge;
 pub mod native;
+#[cfg(feature = "scryer")]
+pub mod scryer;
 pub mod update;
 
+pub use choice::{AgentEngine, KrKind};
 pub use error::{Interrupt, KrError, KrResult, Limits, LoadError};
 pub use factbase::FactBase;
 pub use knowledge::Knowledge;

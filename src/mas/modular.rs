@@ -107,6 +107,7 @@ pub fn load(path: &Path, text: &str) -> Result<MasSystem, Vec<Problem>> {
         file,
         env,
         programs,
+        engines: BTreeMap::new(),
         files,
         rules: mas.launch,
         warnings,

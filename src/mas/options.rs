@@ -43,6 +43,8 @@ pub struct RunOptions {
     pub max_sent: usize,
     /// The transport and session options (CLAMR); default: in-process, nothing followed.
     pub comm: crate::clamr::CommOptions,
+    /// The KR engine of agents whose `.mas2g` entry does not choose one (`language`).
+    pub kr: crate::kr::KrKind,
 }
 
 /// Default of [`RunOptions::max_memory`]: 4 GiB.
@@ -69,6 +71,7 @@ impl Default for RunOptions {
             max_mailbox: DEFAULT_MAX_MAILBOX,
             max_sent: DEFAULT_MAX_MAILBOX,
             comm: crate::clamr::CommOptions::default(),
+            kr: crate::kr::KrKind::Native,
         }
     }
 }

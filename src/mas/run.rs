@@ -153,6 +153,11 @@ impl<'a> Setup<'a> {
                     format!("launch of {}: no agent file `{}`", l.name, l.reference),
                 )
             })?;
+            let kr = system.engines.get(&l.reference).copied().unwrap_or(opts.kr);
+            if let Err(why) = crate::kr::AgentEngine::new(kr, &prog.knowledge, 0, Limits::default())
+            {
+                return Err(problem("M0034", format!("agent {}: {why}", l.name)));
+            }
             let config = AgentConfig {
                 seed: agent_seed(seed, &l.name),
                 directory: Some(directory.clone()),
@@ -165,6 +170,7 @@ impl<'a> Setup<'a> {
                 },
                 max_beliefs: opts.max_beliefs,
                 max_sent: opts.max_sent,
+                kr,
                 ..AgentConfig::default()
             };
             let agent = obs.agent(i, &l.name, prog, &config);

@@ -82,6 +82,8 @@ pub struct MasSystem {
     pub env: Option<EnvSetup>,
     /// Compiled programs by reference name.
     pub programs: BTreeMap<String, Arc<Program>>,
+    /// The KR engine an agent file's entry chose (`language = scryer` or `native`).
+    pub engines: BTreeMap<String, crate::kr::KrKind>,
     /// Agent file path (as loaded) by reference name.
     pub files: BTreeMap<String, String>,
     /// Launch rules in file order.
@@ -125,6 +127,7 @@ pub fn from_mas_text(file: &str, text: &str, origin: Origin) -> Result<MasSystem
         file: file.to_string(),
         env: None,
         programs: BTreeMap::new(),
+        engines: BTreeMap::new(),
         files: BTreeMap::new(),
         rules: mas.launch_rules.clone(),
         warnings: warnings.into_iter().map(wrap).collect(),
@@ -137,6 +140,13 @@ pub fn from_mas_text(file: &str, text: &str, origin: Origin) -> Result<MasSystem
         let reference = af.reference_name();
         if system.programs.contains_key(&reference) {
             continue;
+        }
+        if let Some(Ok(Some(kind))) = af
+            .language
+            .as_ref()
+            .map(|l| crate::kr::KrKind::parse(&l.value))
+        {
+            system.engines.insert(reference.clone(), kind);
         }
         // The same file under two reference names is compiled once and shared.
         if let Some((path, prog)) = compiled.get(&af.path.value) {
@@ -177,6 +187,7 @@ pub fn load_agent(path: &Path) -> Result<MasSystem, Vec<Problem>> {
         file: file.clone(),
         env: None,
         programs: BTreeMap::from([(reference.clone(), prog)]),
+        engines: BTreeMap::new(),
         files: BTreeMap::from([(reference, file)]),
         rules: vec![LaunchRule {
             condition: None,

@@ -28,6 +28,8 @@ pub struct TestOptions {
     pub seed: Option<u64>,
     /// Do not step agents waiting for new input (the outcome is the same either way).
     pub skip_idle: bool,
+    /// The KR engine of agents whose `.mas2g` entry does not choose one.
+    pub kr: crate::kr::KrKind,
 }
 
 impl Default for TestOptions {
@@ -36,6 +38,7 @@ impl Default for TestOptions {
             max_ticks: 10_000,
             seed: None,
             skip_idle: true,
+            kr: crate::kr::KrKind::Native,
         }
     }
 }
@@ -272,6 +275,7 @@ fn launch(ctx: &Ctx<'_>, jobs: &[Job<'_>], opts: &TestOptions) -> Vec<TestReport
         skip_idle: opts.skip_idle,
         time_limit: timeout,
         trace_rules: false,
+        kr: opts.kr,
         ..RunOptions::default()
     };
     let mut tests = Tests {

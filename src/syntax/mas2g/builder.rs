@@ -196,16 +196,26 @@ fn agent_file(raw: RawAgentFile, file: &str, diags: &mut Vec<Diagnostic>) -> Age
         }
     }
     if let Some(l) = &out.language {
-        if !l.value.eq_ignore_ascii_case("swiprolog") {
-            diags.push(
+        match crate::kr::KrKind::parse(&l.value) {
+            Err(_) => diags.push(
                 Diagnostic::warning(
                     "W0205",
-                    format!("unknown KR language `{}`; swiprolog is used", l.value),
+                    format!("unknown KR language `{}`; the run's engine is used", l.value),
                     file,
                     l.span.clone(),
                 )
-                .with_hint("write `language = swiprolog` or leave it out"),
-            );
+                .with_hint("write `language = scryer`, `native` or `swiprolog` (the run's engine, `--kr`), or leave it out"),
+            ),
+            Ok(Some(k)) if !k.available() => diags.push(
+                Diagnostic::error(
+                    "E0209",
+                    format!("this goal was built without the {} engine", k.name()),
+                    file,
+                    l.span.clone(),
+                )
+                .with_hint("build with the default features, or write `language = native`"),
+            ),
+            Ok(_) => {}
         }
     }
     out

@@ -10,6 +10,19 @@ use crate::syntax::prolog::Located;
 use crate::term::Term;
 use std::collections::BTreeMap;
 
+const SCRYER_HINT: &str = "give the agent `language = scryer` in its .mas2g entry or run with `--kr scryer`; on the native engine the agent does not start";
+
+/// What only the scryer engine runs: exceptions, DCG rules and `phrase/2,3`.
+fn scryer_only(name: &str, arity: usize) -> Option<String> {
+    match (name, arity) {
+        ("catch", 3) | ("throw", 1) | ("phrase", 2) | ("phrase", 3) => {
+            Some(format!("`{name}/{arity}`"))
+        }
+        ("-->", 2) => Some("a DCG rule (`-->`)".into()),
+        _ => None,
+    }
+}
+
 /// Where predicates are defined and queried.
 #[derive(Default)]
 struct Uses {
@@ -139,7 +152,14 @@ pub fn check(ctx: &mut Ctx<'_>) {
     }
     for g in kr_goals {
         if let Some((n, a)) = g.term.functor() {
-            if let Some(why) = protected_reason(n.name()) {
+            if let Some(what) = scryer_only(n.name(), a) {
+                ctx.warning(
+                    "W0125",
+                    format!("{what} runs only on the scryer KR engine"),
+                    g.span.clone(),
+                    SCRYER_HINT,
+                );
+            } else if let Some(why) = protected_reason(n.name()) {
                 ctx.error(
                     "E0123",
                     format!("`{}/{a}` may not be used in KR content", n.name()),
@@ -157,6 +177,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
             || is_builtin(&k.0, k.1)
             || is_reserved(&k.0, k.1)
             || protected_reason(&k.0).is_some()
+            || scryer_only(&k.0, k.1).is_some()
             || crate::kr::native::library::is_known(&k.0, k.1)
     };
     let mut reported: std::collections::BTreeSet<&Key> = Default::default();
@@ -314,7 +335,17 @@ pub fn check_prolog_clauses(clauses: &[Located], file: &str) -> Vec<crate::diag:
         }
         for g in goals {
             if let Some((n, a)) = g.term.functor() {
-                if let Some(why) = protected_reason(n.name()) {
+                if let Some(what) = scryer_only(n.name(), a) {
+                    diags.push(
+                        Diagnostic::warning(
+                            "W0125",
+                            format!("{what} runs only on the scryer KR engine"),
+                            file,
+                            g.span.clone(),
+                        )
+                        .with_hint(SCRYER_HINT),
+                    );
+                } else if let Some(why) = protected_reason(n.name()) {
                     diags.push(
                         Diagnostic::error(
                             "E0123",
