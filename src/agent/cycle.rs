@@ -138,6 +138,8 @@ pub struct Core {
     pub truncated_rules: BTreeSet<String>,
     /// Sleep, timers and channel subscriptions (modular GOAL).
     pub timing: Timing,
+    /// The run's simulated time in seconds (`None`: wall-clock time), whatever the KR engine.
+    pub clock: Option<f64>,
     /// Records what the rules do, for `goal why` (`None` in ordinary runs).
     pub why: Option<super::why::Recorder>,
 }
@@ -297,6 +299,7 @@ impl Agent {
                 unsettled: false,
                 truncated_rules: BTreeSet::new(),
                 timing: Timing::default(),
+                clock: None,
                 why: None,
             },
             types: config.percept_types,
@@ -394,6 +397,7 @@ impl Agent {
     /// Sets the simulated time (seconds since the start of the run) that `get_time/1`
     /// answers; `None`: wall-clock time.
     pub fn set_clock(&mut self, now: Option<f64>) {
+        self.core.clock = now;
         if let Ok(mut e) = self.core.ms.engine.try_borrow_mut() {
             e.set_clock(now);
         }

@@ -147,8 +147,7 @@ fn millis(t: &Term, what: &str) -> Result<f64, Fault> {
 impl Core {
     /// The agent's time in milliseconds: the run's simulated clock when it has one.
     pub fn now_ms(&self) -> f64 {
-        let sim = self.ms.engine.try_borrow().ok().and_then(|e| e.clock.now);
-        match sim {
+        match self.clock {
             Some(s) => s * 1000.0,
             None => self.timing.created.elapsed().as_secs_f64() * 1000.0,
         }

@@ -84,6 +84,7 @@ pub fn merge(teams: &[MasSystem], n: usize) -> Result<MasSystem, String> {
         files: BTreeMap::new(),
         rules: Vec::new(),
         warnings: Vec::new(),
+        engines: BTreeMap::new(),
     };
     let mut taken = BTreeSet::new();
     for (t, sys) in teams.iter().enumerate() {
@@ -99,6 +100,9 @@ pub fn merge(teams: &[MasSystem], n: usize) -> Result<MasSystem, String> {
         }
         for (r, f) in &sys.files {
             merged.files.insert(prefix(r), f.clone());
+        }
+        for (r, k) in &sys.engines {
+            merged.engines.insert(prefix(r), *k);
         }
         let mut launcher = Launcher::new(&sys.rules);
         let mut launches = launcher.unconditional();
