@@ -456,17 +456,10 @@ impl Agent {
             .core
             .cycle_time
             .and_then(|t| Instant::now().checked_add(t));
-        self.core.deadline = match (quota_end, self.core.run_end) {
+        self.begin_cycle(match (quota_end, self.core.run_end) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
-        };
-        // Long queries stop at the same deadline (the engine checks it as it goes).
-        self.core
-            .ms
-            .engine
-            .borrow_mut()
-            .set_deadline(self.core.deadline);
-        self.core.event(Event::CycleStart { cycle: self.cycle });
+        });
         match self.run_cycle(percepts, messages) {
             Ok(None) => {}
             Ok(Some(reason)) => {
@@ -480,15 +473,7 @@ impl Agent {
                 self.stop(StopReason::Error(e));
             }
         }
-        let kr_text = self.core.ms.take_output();
-        self.core.kr_out.push_str(&kr_text);
-        if !self.core.kr_out.is_empty() {
-            let text = std::mem::take(&mut self.core.kr_out);
-            self.core
-                .out
-                .printed
-                .extend(text.lines().map(str::to_string));
-        }
+        self.collect_printed();
         let out = &self.core.out;
         self.waiting = self.stopped.is_none()
             && !self.acted_last
@@ -501,6 +486,58 @@ impl Agent {
             && self.chance() == self.chance_before_main;
         self.core.out.waiting = self.waiting;
         std::mem::take(&mut self.core.out)
+    }
+
+    /// Runs the shutdown module (modular GOAL) once, as the agent's last cycle, because the
+    /// run ends while the agent still runs; `None` without a shutdown module or once stopped.
+    pub fn end_of_run(&mut self) -> Option<CycleOutput> {
+        let m = self.program.shutdown?;
+        if self.stopped.is_some() {
+            return None;
+        }
+        self.cycle += 1;
+        self.core.out = CycleOutput::default();
+        // Only the cycle quota bounds this pass: the run's own end may already have passed.
+        self.begin_cycle(
+            self.core
+                .cycle_time
+                .and_then(|t| Instant::now().checked_add(t)),
+        );
+        let prog = self.program.clone();
+        match self.run_once(&prog, m) {
+            Ok(()) => self.core.event(Event::Stopped {
+                reason: "run ended".to_string(),
+            }),
+            Err(e) => {
+                self.core.event(Event::Error {
+                    message: e.to_string(),
+                });
+                self.stop(StopReason::Error(e));
+            }
+        }
+        self.collect_printed();
+        Some(std::mem::take(&mut self.core.out))
+    }
+
+    /// Starts a cycle's events under `deadline`, which long queries also stop at (the engine
+    /// checks it as it goes).
+    fn begin_cycle(&mut self, deadline: Option<Instant>) {
+        self.core.deadline = deadline;
+        self.core.ms.engine.borrow_mut().set_deadline(deadline);
+        self.core.event(Event::CycleStart { cycle: self.cycle });
+    }
+
+    /// Moves what the KR engine printed this cycle into the cycle's output, line by line.
+    fn collect_printed(&mut self) {
+        let kr_text = self.core.ms.take_output();
+        self.core.kr_out.push_str(&kr_text);
+        if !self.core.kr_out.is_empty() {
+            let text = std::mem::take(&mut self.core.kr_out);
+            self.core
+                .out
+                .printed
+                .extend(text.lines().map(str::to_string));
+        }
     }
 
     /// Stops the agent from outside with a runtime error (e.g. the environment refused one

@@ -14,7 +14,8 @@ use super::trace::{AgentInfo, TraceWriter};
 pub use super::observer::{Observer, Progress, Quiet};
 pub use super::options::{RunOptions, DEFAULT_MAX_MAILBOX, DEFAULT_MAX_MEMORY, TICK_SECONDS};
 use crate::agent::{
-    Agent, AgentConfig, Directory, Event, Message, RuntimeError, StopReason, TraceLevel,
+    Agent, AgentConfig, CycleOutput, Directory, Event, Message, RuntimeError, StopReason,
+    TraceLevel,
 };
 use crate::diag::Diagnostic;
 use crate::env::thread::{EnvHandle, Mode};
@@ -60,6 +61,29 @@ struct Slot {
     queued: bool,
     /// Rounds before this one are accounted in `stats.idle_ticks`.
     counted: u64,
+}
+
+/// Accounts, traces and reports one cycle of the agent in slot `s` (its warnings and prints).
+fn report_cycle(
+    s: &mut Slot,
+    out: &CycleOutput,
+    (round, tick): (u64, u64),
+    trace: Option<&mut TraceWriter>,
+    obs: &mut dyn Observer,
+) {
+    s.stats.cycles += 1;
+    s.stats.actions += out.actions;
+    if let Some(t) = trace {
+        t.cycle(round, tick, &s.name, &out.events);
+    }
+    for e in &out.events {
+        if let Event::Warning { message } = e {
+            obs.warning(&format!("{}: {message}", s.name));
+        }
+    }
+    for line in &out.printed {
+        obs.printed(&s.name, line);
+    }
 }
 
 /// Queues slot `i` for the next round (once).
@@ -367,19 +391,7 @@ impl<'a> Setup<'a> {
                     s.stats.idle_ticks += 1;
                     continue;
                 }
-                s.stats.cycles += 1;
-                s.stats.actions += out.actions;
-                if let Some(t) = trace.as_mut() {
-                    t.cycle(round, tick, &s.name, &out.events);
-                }
-                for e in &out.events {
-                    if let Event::Warning { message } = e {
-                        obs.warning(&format!("{}: {message}", s.name));
-                    }
-                }
-                for line in &out.printed {
-                    obs.printed(&s.name, line);
-                }
+                report_cycle(s, &out, (round, tick), trace.as_mut(), obs);
                 let mut at = out.env_sites.into_iter();
                 for a in out.env_actions {
                     match &s.entity {
@@ -537,6 +549,12 @@ impl<'a> Setup<'a> {
         for s in self.slots.iter_mut().filter(|s| !s.stats.stopped) {
             s.stats.idle_ticks += round.saturating_sub(s.counted);
         }
+        if !matches!(
+            end,
+            EndReason::MemoryLimit | EndReason::Failure | EndReason::Released
+        ) {
+            self.end_of_run((round, tick), trace.as_mut(), obs);
+        }
         for &i in &steered {
             self.pool.with_agent(i, |a| obs.ended(i, a, end));
         }
@@ -575,6 +593,50 @@ impl<'a> Setup<'a> {
             None => None,
         };
         (summary, err)
+    }
+
+    /// Runs the shutdown module of each agent still running as the run ends, in agent-name
+    /// order, traced like a cycle; its environment actions and messages are not carried out
+    /// (the run's last round is over), each is traced as a warning instead.
+    fn end_of_run(
+        &mut self,
+        when: (u64, u64),
+        mut trace: Option<&mut TraceWriter>,
+        obs: &mut dyn Observer,
+    ) {
+        let (round, tick) = when;
+        let mut order: Vec<usize> = (0..self.slots.len())
+            .filter(|&i| !self.slots[i].stats.stopped)
+            .collect();
+        order.sort_by(|&a, &b| self.slots[a].name.cmp(&self.slots[b].name));
+        for i in order {
+            let Some(Some(out)) = self.pool.with_agent(i, |a| a.end_of_run()) else {
+                continue;
+            };
+            let s = &mut self.slots[i];
+            report_cycle(s, &out, when, trace.as_deref_mut(), obs);
+            let dropped = out
+                .env_actions
+                .iter()
+                .map(|a| format!("environment action {a}"));
+            let unsent = out
+                .messages
+                .iter()
+                .map(|m| format!("message {} to {}", m.content, m.receiver));
+            for what in dropped.chain(unsent) {
+                let msg =
+                    format!("{what} of the shutdown module not carried out: the run has ended");
+                if let Some(t) = trace.as_deref_mut() {
+                    t.warning(round, tick, &s.name, &msg);
+                }
+                obs.warning(&format!("{}: {msg}", s.name));
+            }
+            if let Some(StopReason::Error(e)) = out.stopped {
+                s.stats.stopped = true;
+                s.stats.error = Some(e.to_string());
+                obs.warning(&format!("agent {} stopped: {e}", s.name));
+            }
+        }
     }
 
     /// Traces the results of a round's environment actions and stops each agent whose
