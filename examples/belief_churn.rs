@@ -25,7 +25,7 @@ fn main() {
         beliefs.insert(Term::compound("block", vec![Term::Int(i)]));
     }
     let query = Term::compound("at", vec![Term::var("X"), Term::var("Y")]);
-    let mut warm = |engine: &mut AgentEngine, b: &FactBase| {
+    let warm = |engine: &mut AgentEngine, b: &FactBase| {
         let bases = [b];
         engine
             .query(&View::beliefs(&kn, &bases), &query)
