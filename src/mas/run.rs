@@ -3,6 +3,9 @@
 //! environment in agent-name order and messages are delivered for the next round in (sender,
 //! sequence) order. The result depends only on the programs, the map and the seed.
 
+mod end;
+mod start;
+
 use super::environment::{env_params, percept_types};
 use super::launch::{agent_seed, Launch, Launcher};
 use super::routing::Router;
@@ -120,129 +123,7 @@ struct Setup<'a> {
     ready: Vec<usize>,
 }
 
-fn problem(code: &str, msg: String) -> Vec<Problem> {
-    vec![Problem::bare(Diagnostic::error(code, msg, "run", 0..0))]
-}
-
 impl<'a> Setup<'a> {
-    fn new(
-        system: &'a MasSystem,
-        opts: &'a RunOptions,
-        level: TraceLevel,
-        obs: &mut dyn Observer,
-    ) -> Result<Setup<'a>, Vec<Problem>> {
-        let mut launcher = Launcher::new(&system.rules);
-        let mut launches: Vec<Launch> = launcher.unconditional();
-        let (env, info, seed, map) = match &system.env {
-            Some(setup) => {
-                let (p, seed, map) = env_params(setup, opts, obs);
-                let (world, warnings) = setup.kind.create(&p)?;
-                for w in &warnings {
-                    obs.warning(w);
-                }
-                let map = Some(map).filter(|m| !m.is_empty());
-                let handle = EnvHandle::spawn(world, Mode::LockStep);
-                let info = handle
-                    .info()
-                    .map_err(|e| problem("M0030", format!("environment: {e}")))?;
-                (Some(handle), Some(info), seed, map)
-            }
-            None => (None, None, opts.seed.unwrap_or(0), None),
-        };
-        if let Some(info) = &info {
-            for e in &info.entities {
-                match launcher.entity(e) {
-                    Some(l) => launches.extend(l),
-                    None => obs.warning(&format!(
-                        "no launch rule for entity {} (type {}); it stays without an agent",
-                        e.name, e.kind
-                    )),
-                }
-            }
-        }
-        launches.sort_by(|a, b| a.name.cmp(&b.name));
-        if launches.is_empty() {
-            return Err(problem("M0031", "no agent was launched".into()));
-        }
-        let names: Vec<String> = launches.iter().map(|l| l.name.clone()).collect();
-        let types = Arc::new(info.as_ref().map(percept_types).unwrap_or_default());
-        let directory = Directory::new(&names);
-        let mut agents = Vec::new();
-        let mut slots = Vec::new();
-        let mut by_entity: BTreeMap<String, Vec<usize>> = BTreeMap::new();
-        for (i, l) in launches.iter().enumerate() {
-            let prog = system.programs.get(&l.reference).ok_or_else(|| {
-                problem(
-                    "M0032",
-                    format!("launch of {}: no agent file `{}`", l.name, l.reference),
-                )
-            })?;
-            let kr = system.engines.get(&l.reference).copied().unwrap_or(opts.kr);
-            if let Err(why) = crate::kr::AgentEngine::new(kr, &prog.knowledge, 0, Limits::default())
-            {
-                return Err(problem("M0034", format!("agent {}: {why}", l.name)));
-            }
-            let config = AgentConfig {
-                seed: agent_seed(seed, &l.name),
-                directory: Some(directory.clone()),
-                percept_types: types.clone(),
-                trace: level,
-                cycle_time: opts.cycle_time,
-                limits: Limits {
-                    deadline: opts.time_limit.and_then(|t| Instant::now().checked_add(t)),
-                    ..Limits::default()
-                },
-                max_beliefs: opts.max_beliefs,
-                max_sent: opts.max_sent,
-                kr,
-                ..AgentConfig::default()
-            };
-            let agent = obs.agent(i, &l.name, prog, &config);
-            agents.push(agent.unwrap_or_else(|| Agent::new(prog.clone(), &l.name, config)));
-            if let Some(e) = &l.entity {
-                by_entity.entry(e.clone()).or_default().push(i);
-            }
-            slots.push(Slot {
-                name: l.name.clone(),
-                reference: l.reference.clone(),
-                entity: l.entity.clone(),
-                stats: AgentStats {
-                    entity: l.entity.clone(),
-                    ..AgentStats::default()
-                },
-                waiting: false,
-                percepts: Vec::new(),
-                inbox: Vec::new(),
-                queued: true,
-                counted: 0,
-            });
-        }
-        let initial = match &env {
-            Some(h) => h
-                .perceive(&[])
-                .map_err(|e| problem("M0030", format!("environment: {e}")))?,
-            None => Vec::new(),
-        };
-        let slots_len = slots.len();
-        let pool = Pool::new(agents, opts.workers).map_err(|e| problem("M0033", e.0))?;
-        let comm =
-            crate::clamr::Comm::new(&names, &opts.comm, seed).map_err(|e| problem("M0034", e))?;
-        Ok(Setup {
-            system,
-            opts,
-            seed,
-            map,
-            env,
-            pool,
-            router: Router::new(&names),
-            comm,
-            slots,
-            ready: (0..slots_len).collect(),
-            by_entity,
-            initial,
-        })
-    }
-
     fn deliver_percepts(&mut self, batches: Vec<(String, Vec<Term>)>) {
         for (entity, batch) in batches {
             if let Some(ids) = self.by_entity.get(&entity) {
@@ -595,85 +476,6 @@ impl<'a> Setup<'a> {
         (summary, err)
     }
 
-    /// Runs the shutdown module of each agent still running as the run ends, in agent-name
-    /// order, traced like a cycle; its environment actions and messages are not carried out
-    /// (the run's last round is over), each is traced as a warning instead.
-    fn end_of_run(
-        &mut self,
-        when: (u64, u64),
-        mut trace: Option<&mut TraceWriter>,
-        obs: &mut dyn Observer,
-    ) {
-        let (round, tick) = when;
-        let mut order: Vec<usize> = (0..self.slots.len())
-            .filter(|&i| !self.slots[i].stats.stopped)
-            .collect();
-        order.sort_by(|&a, &b| self.slots[a].name.cmp(&self.slots[b].name));
-        for i in order {
-            let Some(Some(out)) = self.pool.with_agent(i, |a| a.end_of_run()) else {
-                continue;
-            };
-            let s = &mut self.slots[i];
-            report_cycle(s, &out, when, trace.as_deref_mut(), obs);
-            let dropped = out
-                .env_actions
-                .iter()
-                .map(|a| format!("environment action {a}"));
-            let unsent = out
-                .messages
-                .iter()
-                .map(|m| format!("message {} to {}", m.content, m.receiver));
-            for what in dropped.chain(unsent) {
-                let msg =
-                    format!("{what} of the shutdown module not carried out: the run has ended");
-                if let Some(t) = trace.as_deref_mut() {
-                    t.warning(round, tick, &s.name, &msg);
-                }
-                obs.warning(&format!("{}: {msg}", s.name));
-            }
-            if let Some(StopReason::Error(e)) = out.stopped {
-                s.stats.stopped = true;
-                s.stats.error = Some(e.to_string());
-                obs.warning(&format!("agent {} stopped: {e}", s.name));
-            }
-        }
-    }
-
-    /// Traces the results of a round's environment actions and stops each agent whose
-    /// action was refused (GOAL treats that as fatal); returns how many agents stopped.
-    fn results(
-        &mut self,
-        acted: Acted<'_>,
-        results: &[(String, ActionResult)],
-        (round, tick): (u64, u64),
-        mut trace: Option<&mut TraceWriter>,
-        obs: &mut dyn Observer,
-    ) -> usize {
-        let mut stopped = 0;
-        for (k, ((entity, result), (_, a))) in results.iter().zip(acted.actions).enumerate() {
-            let i = acted.actors[k];
-            if let Some(t) = trace.as_deref_mut() {
-                t.action(
-                    round,
-                    tick,
-                    &self.slots[i].name,
-                    entity,
-                    &a.to_string(),
-                    result,
-                );
-            }
-            if let ActionResult::Failed(m) = result {
-                obs.action_failed(&self.slots[i].name, a, m);
-                let mut e = std::mem::take(&mut acted.sites[k]);
-                e.message = format!("environment action {a} failed: {m}");
-                if self.halt(i, e, round, tick, trace.as_deref_mut(), obs) {
-                    stopped += 1;
-                }
-            }
-        }
-        stopped
-    }
-
     /// The steered agents that must be stepped this round (queued for it).
     fn busy_steered(&mut self, steered: &[usize], obs: &mut dyn Observer) -> Vec<usize> {
         let mut busy = Vec::new();
@@ -687,42 +489,6 @@ impl<'a> Setup<'a> {
             }
         }
         busy
-    }
-
-    /// Why the run must stop before the next round, if it must: a signal, the wall-time
-    /// limit, or the memory cap (checked every [`MEMORY_CHECK_EVERY`]).
-    fn interrupted_or_over(
-        &self,
-        start: Instant,
-        memory_checked: &mut Instant,
-        obs: &mut dyn Observer,
-    ) -> Option<EndReason> {
-        if self
-            .opts
-            .interrupt
-            .as_ref()
-            .is_some_and(|f| f.load(Ordering::Relaxed) != 0)
-        {
-            return Some(EndReason::Interrupted);
-        }
-        if self.opts.time_limit.is_some_and(|l| start.elapsed() >= l) {
-            return Some(EndReason::TimeLimit);
-        }
-        let cap = self.opts.max_memory?;
-        if memory_checked.elapsed() < MEMORY_CHECK_EVERY {
-            return None;
-        }
-        *memory_checked = Instant::now();
-        let used = super::memory::resident_bytes()?;
-        if used <= cap {
-            return None;
-        }
-        obs.warning(&format!(
-            "the run uses {} MiB of memory, more than its cap of {} MiB (--max-memory); stopping",
-            used >> 20,
-            cap >> 20
-        ));
-        Some(EndReason::MemoryLimit)
     }
 
     /// True when agent `j` has as many messages waiting as its mailbox may hold: the message
@@ -744,37 +510,6 @@ impl<'a> Setup<'a> {
         true
     }
 
-    /// Stops agent `i` on runtime error `e` from outside its cycle (the agent, its slot, the
-    /// trace and the observer all learn it); true when it was running.
-    fn halt(
-        &mut self,
-        i: usize,
-        e: RuntimeError,
-        round: u64,
-        tick: u64,
-        trace: Option<&mut TraceWriter>,
-        obs: &mut dyn Observer,
-    ) -> bool {
-        let s = &mut self.slots[i];
-        if s.stats.stopped {
-            return false;
-        }
-        let text = e.to_string();
-        if let Some(t) = trace {
-            t.warning(
-                round,
-                tick,
-                &s.name,
-                &format!("stopped: runtime error: {text}"),
-            );
-        }
-        obs.warning(&format!("agent {} stopped: {text}", s.name));
-        s.stats.stopped = true;
-        s.stats.error = Some(text);
-        self.pool.halt(i, e);
-        true
-    }
-
     /// Writes what a viewer draws of the environment to the trace: its layout (`first`) and
     /// the changes of its scene at the start of `tick`. Nothing without an environment or when
     /// it has nothing to draw.
@@ -788,21 +523,5 @@ impl<'a> Setup<'a> {
         if let Ok(Some(scene)) = h.scene() {
             trace.world(round, tick, &scene);
         }
-    }
-
-    fn agent_infos(&self) -> Vec<AgentInfo> {
-        self.slots
-            .iter()
-            .map(|s| AgentInfo {
-                name: s.name.clone(),
-                file: self
-                    .system
-                    .files
-                    .get(&s.reference)
-                    .cloned()
-                    .unwrap_or_default(),
-                entity: s.entity.clone(),
-            })
-            .collect()
     }
 }
