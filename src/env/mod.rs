@@ -113,6 +113,12 @@ pub trait Environment: Send {
     fn scene(&mut self) -> Option<serde_json::Value> {
         None
     }
+    /// Takes a request a person made for `entity` (e.g. a click in the browser view); the
+    /// environment turns it into that entity's percepts. `Err` says why it was refused.
+    fn input(&mut self, entity: &str, request: &Term) -> Result<(), String> {
+        let _ = (entity, request);
+        Err("this environment takes no requests from people".into())
+    }
 }
 
 /// Environments that can be set up from init parameters (e.g. those of a `.mas2g` file).
