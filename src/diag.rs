@@ -171,11 +171,11 @@ impl Diagnostic {
         out
     }
 
-    /// The last line of a rendered diagnostic: where its code is explained. Only `E` and `W`
-    /// codes have pages (the table in `syntax::codes`; a test keeps every such code there), map
-    /// codes (`M`) do not.
+    /// The last line of a rendered diagnostic: where its code is explained. Every `E`, `W` and
+    /// `M` code has a page (the table in `syntax::codes`; a test keeps every code the source
+    /// emits there).
     fn footer(&self) -> Option<String> {
-        matches!(self.code.chars().next(), Some('E' | 'W'))
+        matches!(self.code.chars().next(), Some('E' | 'W' | 'M'))
             .then(|| format!("for more, run goal explain {}", self.code))
     }
 
@@ -266,11 +266,15 @@ mod tests {
     }
 
     #[test]
-    fn map_codes_have_no_explain_footer() {
+    fn map_codes_end_with_goal_explain() {
         let d = Diagnostic::error("M0013", "rooms overlap", "m.toml", 0..1);
         let text = d.render("x = 1\n");
         assert!(text.contains("error[M0013]"), "{text}");
-        assert!(!text.contains("goal explain"), "{text}");
+        assert!(
+            text.trim_end()
+                .ends_with("= for more, run goal explain M0013"),
+            "{text}"
+        );
     }
 
     #[test]

@@ -1,9 +1,9 @@
 //! The diagnostic pages (`docs/diagnostics/CODE.md`, shown by `goal explain CODE`): one page per
 //! code of the table and no other; every code the source emits is in the table; each page's
 //! wrong example, checked as `goal check` checks it, produces its code, and its fixed example
-//! does not (codes that no file check can show are listed below, each with the reason). An
+//! does not (codes that no example can show are listed below, each with the reason). An
 //! example whose first block is a ```sh block (about files themselves: missing, not UTF-8, too
-//! large) is run as shell commands with `goal` on the PATH.
+//! large; or about starting a run) is run as shell commands with `goal` on the PATH.
 
 use goal::syntax::codes::CODES;
 use std::collections::BTreeSet;
@@ -35,6 +35,22 @@ const NOT_BY_FILE_CHECK: &[(&str, &str)] = &[
     (
         "E0413",
         "found while compiling (and by `goal test` for a `do` of a missing module); `goal check` reports E0104",
+    ),
+    (
+        "M0021",
+        "only the library's `Bw4t::from_params` reports it (`goal check` and `goal run` leave unknown keys out): `the_m0021_examples_give_their_code_through_the_library` runs the page's examples",
+    ),
+    (
+        "M0030",
+        "the built-in environment failing inside while a run starts: no input makes it do so",
+    ),
+    (
+        "M0032",
+        "a launch of an agent file that `agentfiles` does not list is refused as E0206 before a run starts",
+    ),
+    (
+        "M0033",
+        "the operating system refusing a worker thread: no input makes it do so",
     ),
 ];
 
@@ -81,12 +97,7 @@ fn check(code: &str, title: &str, files: &[(String, String)]) -> (BTreeSet<Strin
         "goal-explain-{code}-{title}-{}",
         std::process::id()
     ));
-    let _ = std::fs::remove_dir_all(&dir);
-    for (name, text) in files {
-        let path: PathBuf = dir.join(name);
-        std::fs::create_dir_all(path.parent().expect("parent")).expect("dir");
-        std::fs::write(&path, text).expect("write");
-    }
+    write_files(&dir, files);
     let result = if files[0].0 == "example.sh" {
         run_commands(&dir, &files[0].1)
     } else {
@@ -101,8 +112,33 @@ fn check(code: &str, title: &str, files: &[(String, String)]) -> (BTreeSet<Strin
     result
 }
 
-/// Runs the lines of a ```sh example in `dir`; the codes in what `goal check` printed, and
-/// whether any line failed.
+/// Writes `(name, text)` files into a fresh directory `dir`.
+fn write_files(dir: &Path, files: &[(String, String)]) {
+    let _ = std::fs::remove_dir_all(dir);
+    for (name, text) in files {
+        let path: PathBuf = dir.join(name);
+        std::fs::create_dir_all(path.parent().expect("parent")).expect("dir");
+        std::fs::write(&path, text).expect("write");
+    }
+}
+
+/// The rendered diagnostic of `code` in `text`: from its `error[CODE]` line to the next
+/// diagnostic.
+fn rendered<'a>(text: &'a str, code: &str) -> &'a str {
+    let start = text
+        .find(&format!("error[{code}]"))
+        .unwrap_or_else(|| panic!("no error[{code}] in {text}"));
+    let rest = &text[start + 1..];
+    let end = [rest.find("error["), rest.find("warning[")]
+        .into_iter()
+        .flatten()
+        .min()
+        .unwrap_or(rest.len());
+    &text[start..start + 1 + end]
+}
+
+/// Runs the lines of a ```sh example in `dir`; the codes in what the commands printed (on
+/// stdout, as `goal check` does, or stderr, as `goal run` does), and whether any line failed.
 fn run_commands(dir: &Path, script: &str) -> (BTreeSet<String>, bool) {
     let bin = Path::new(env!("CARGO_BIN_EXE_goal"))
         .parent()
@@ -122,7 +158,7 @@ fn run_commands(dir: &Path, script: &str) -> (BTreeSet<String>, bool) {
             .output()
             .expect("sh runs");
         failed |= !out.status.success();
-        let text = String::from_utf8_lossy(&out.stdout);
+        let text = String::from_utf8_lossy(&out.stdout) + String::from_utf8_lossy(&out.stderr);
         for (i, _) in text
             .match_indices("error[")
             .chain(text.match_indices("warning["))
@@ -180,7 +216,7 @@ fn every_code_the_source_emits_is_in_the_table() {
                 let close = text.get(i + 6..i + 7);
                 if let (Some(lit), Some("\"")) = (lit, close) {
                     let b = lit.as_bytes();
-                    if (b[0] == b'E' || b[0] == b'W') && b[1..].iter().all(u8::is_ascii_digit) {
+                    if matches!(b[0], b'E' | b'W' | b'M') && b[1..].iter().all(u8::is_ascii_digit) {
                         if !known.contains(lit) {
                             unknown.push(format!("{}: {lit}", p.display()));
                         }
@@ -226,7 +262,7 @@ fn goal(args: &[&str]) -> std::process::Output {
 
 #[test]
 fn goal_explain_prints_the_page_of_a_code_in_any_case() {
-    for arg in ["E0121", "e0121", " W0110 "] {
+    for arg in ["E0121", "e0121", " W0110 ", "m0013"] {
         let out = goal(&["explain", arg]);
         assert!(out.status.success(), "{arg}");
         let code = arg.trim().to_ascii_uppercase();
@@ -282,4 +318,57 @@ fn too_many_problems_end_with_e0033() {
     assert_eq!(diags.len(), 101);
     assert!(diags[..100].iter().all(|d| d.code == "E0014"));
     assert_eq!(diags[100].code, "E0033", "{}", diags[100].message);
+}
+
+#[test]
+fn map_and_run_errors_end_with_goal_explain() {
+    let dir = std::env::temp_dir().join(format!("goal-explain-m-{}", std::process::id()));
+    write_files(&dir, &section_files(&page("M0013"), "Wrong"));
+    let mas = dir.join("example.mas2g").to_string_lossy().into_owned();
+    let out = goal(&["check", &mas]);
+    let shown = String::from_utf8_lossy(&out.stdout);
+    let d = rendered(&shown, "M0013");
+    assert!(d.contains("two-rooms.toml:"), "{d}");
+    assert!(
+        d.trim_end().ends_with("= for more, run goal explain M0013"),
+        "{d}"
+    );
+    // `goal run` prints its start-up errors on stderr, with the same footer.
+    write_files(&dir, &section_files(&page("M0031"), "Wrong"));
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_goal"))
+        .args(["run", "team.mas2g"])
+        .current_dir(&dir)
+        .output()
+        .expect("the binary runs");
+    assert_eq!(out.status.code(), Some(1));
+    let shown = String::from_utf8_lossy(&out.stderr);
+    let d = rendered(&shown, "M0031");
+    assert!(
+        d.trim_end().ends_with("= for more, run goal explain M0031"),
+        "{d}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// M0021 comes only from the library: the parameter of the page's Rust examples, passed to
+/// `Bw4t::from_params` as they pass it, gives the code in the wrong example and not in the fixed.
+#[test]
+fn the_m0021_examples_give_their_code_through_the_library() {
+    use goal::bw4t::Bw4t;
+    use goal::env::InitParams;
+    use goal::term::Term;
+    let key = |title: &str| {
+        let files = section_files(&page("M0021"), title);
+        let text = &files[0].1;
+        let open = "InitParams::from([(\"";
+        let start = text.find(open).expect("a parameter") + open.len();
+        text[start..].split('"').next().expect("a key").to_string()
+    };
+    let codes =
+        |key: String| match Bw4t::from_params(&InitParams::from([(key, Term::atom("true"))])) {
+            Ok(_) => Vec::new(),
+            Err(ds) => ds.into_iter().map(|d| d.code).collect(),
+        };
+    assert_eq!(codes(key("Wrong")), ["M0021"]);
+    assert_eq!(codes(key("Fixed")), Vec::<String>::new());
 }

@@ -8,7 +8,7 @@ use std::process::ExitCode;
 /// Arguments of `goal explain`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// A diagnostic code, such as E0121 or W0110 (any case).
+    /// A diagnostic code, such as E0121, W0110 or M0013 (any case).
     pub code: String,
 }
 
@@ -26,8 +26,9 @@ pub fn main(args: Args) -> ExitCode {
         None => String::new(),
     };
     eprintln!(
-        "error: `{}` is not a diagnostic code of goal{hint} Codes look like E0121 (errors) or \
-         W0110 (warnings); docs/diagnostics/ lists them all.",
+        "error: `{}` is not a diagnostic code of goal{hint} Codes look like E0121 (errors), \
+         W0110 (warnings) or M0013 (maps, environments, starting a run); docs/diagnostics/ \
+         lists them all.",
         args.code
     );
     ExitCode::from(exit::FAILURE)

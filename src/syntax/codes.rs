@@ -2,7 +2,8 @@
 //! `.goal`/`.mod2g`/`.pl` files and file access, `E01xx`/`W01xx` the validator, `E02xx`/`W02xx`
 //! `.mas2g` files, `E03xx`/`W03xx` `.test2g` files, `E04xx`/`W04xx` compiling a program to run it,
 //! `E06xx`/`W06xx` modular GOAL and MARBEL (`.mod2g` modules, `.act2g` files and the modular
-//! `.mas2g` forms). Each code has a page, `docs/diagnostics/CODE.md`, embedded here for
+//! `.mas2g` forms), `M000x`/`M001x` BW4T maps, `M002x`/`M004x` environment init parameters,
+//! `M003x` starting a run. Each code has a page, `docs/diagnostics/CODE.md`, embedded here for
 //! `goal explain`.
 
 /// Defines [`CODES`] and, from the same list, the embedded pages (so neither can miss a code).
@@ -105,6 +106,32 @@ table! {
     ("E0610", "a MARBEL percept declared twice in one agent"),
     ("E0611", "a module file of another generation than its MAS file"),
     ("E0612", "one file named twice by the use clauses of one file"),
+    ("M0000", "a map cannot be read: no built-in map and no map file has that name"),
+    ("M0001", "a map file is not valid TOML or BW4T XML, or has an unknown, missing or mistyped field"),
+    ("M0002", "a zone names a neighbour that is not a zone of the map"),
+    ("M0003", "the map has no drop zone (a room named `DropZone`)"),
+    ("M0004", "blocks listed in a zone that is not a blocks room"),
+    ("M0005", "doors on a zone that is not a room, or a door off its room's wall"),
+    ("M0006", "an unknown colour in a room's blocks or in the sequence"),
+    ("M0007", "two spawn points overlap"),
+    ("M0008", "a spawn point inside a room"),
+    ("M0009", "more random blocks than the rooms can take"),
+    ("M0010", "a map or zone size that is not positive, or a position that is not a number"),
+    ("M0011", "two zones with one name"),
+    ("M0012", "an unknown zone type or door orientation in a BW4T XML map"),
+    ("M0013", "rooms that overlap, or a room that overlaps the drop zone"),
+    ("M0014", "a room or the drop zone without a door"),
+    ("M0015", "a spawn point outside the map"),
+    ("M0016", "a room the game needs that no robot can reach from a spawn point"),
+    ("M0017", "a colour sequence longer than 1000"),
+    ("M0020", "a BW4T init parameter with a value of the wrong kind or out of range"),
+    ("M0021", "an init parameter the BW4T world does not know"),
+    ("M0030", "the environment stopped while the run was starting"),
+    ("M0031", "no agent was launched"),
+    ("M0032", "a launch names an agent file the run did not load"),
+    ("M0033", "a worker thread for the agents cannot be started"),
+    ("M0034", "an agent's KR engine or the run's message layer cannot be set up"),
+    ("M0040", "blocks-world towers that cannot be built"),
     ("W0001", "duplicate section: only the first one is used"),
     ("W0002", "legacy send form (`bob.send(p)` or `send(bob, p)`)"),
     ("W0003", "unknown module option (ignored)"),
