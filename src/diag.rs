@@ -114,7 +114,7 @@ impl Diagnostic {
         let mut d = CsDiagnostic::new(severity)
             .with_code(self.code.clone())
             .with_message(self.message.clone())
-            .with_labels(vec![Label::primary(id, start..end)]);
+            .with_labels(source_label(id, source, start..end));
         let notes: Vec<String> = self
             .hint
             .iter()
@@ -220,6 +220,16 @@ pub fn line_col(source: &str, offset: usize) -> (usize, usize) {
     (line, source[line_start..offset].chars().count() + 1)
 }
 
+/// The label under the source line; none when there is no source (a file that could not be
+/// read, the start of a run), because an empty line with a caret says nothing.
+fn source_label(id: usize, source: &str, span: Range<usize>) -> Vec<Label<usize>> {
+    if source.is_empty() {
+        Vec::new()
+    } else {
+        vec![Label::primary(id, span)]
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -273,6 +283,21 @@ mod tests {
         assert!(
             text.trim_end()
                 .ends_with("= for more, run goal explain M0013"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn without_source_there_is_no_empty_snippet() {
+        let d = Diagnostic::error("M0031", "the run cannot start", "run", 0..0);
+        let text = d.render("");
+        assert!(
+            text.contains("error[M0031]: the run cannot start"),
+            "{text}"
+        );
+        assert!(!text.contains("run:1:1") && !text.contains('^'), "{text}");
+        assert!(
+            text.contains("= for more, run goal explain M0031"),
             "{text}"
         );
     }
