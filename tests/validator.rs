@@ -296,3 +296,12 @@ fn one_macro_name_in_two_modules_is_no_duplicate() {
     let one = "main module { beliefs { p(1). } program {\n#define ok bel(p(1)).\n#define ok bel(p(1)).\nif ok then print(x). } }\n";
     assert_eq!(codes(one), ["E0117 3:9"]);
 }
+
+#[test]
+fn file_system_and_global_state_predicates_are_refused_unless_the_program_defines_them() {
+    let src = "main module {\n  knowledge {\n    a(S) :- open(f, read, S).\n    b :- halt.\n    c(X) :- nb_getval(k, X).\n    shell(_, ok).\n    d(R) :- shell(ls, R).\n  }\n  program { if bel(a(_)), bel(b), bel(c(_)), bel(d(_)) then print(x). }\n}\n";
+    let c = codes(src).join(" ");
+    // open/3 is a file predicate; halt/0 and nb_getval/2 are protected; shell/2 is the
+    // program's own predicate here, so calling it is fine.
+    assert_eq!(c, "E0123 3:13 E0123 4:10 E0123 5:13", "{c}");
+}

@@ -59,59 +59,159 @@ pub struct Knowledge {
     source: Vec<Term>,
 }
 
-/// Names that GOAL programs may not use as predicates (docs/prolog.md).
-const PROTECTED: &[&str] = &[
-    "assert",
-    "asserta",
-    "assertz",
-    "retract",
-    "retractall",
-    "abolish",
-    ":",
-    "dynamic",
-    "multifile",
-    "discontiguous",
-    "op",
-    "char_conversion",
-    "initialization",
-    "ensure_loaded",
-    "module_transparent",
-    "meta_predicate",
-    "thread_local",
-    "volatile",
-    "catch",
-    "throw",
-    "numbervars",
-    "debug",
-    "nodebug",
-    "subsumes_term",
-    "tmp_file_stream",
-    "consult",
-    "use_module",
-    "module",
-    "halt",
-    "set_prolog_flag",
-    "nb_setval",
-    "b_setval",
-    "nb_getval",
-    "b_getval",
-    "recorda",
-    "recordz",
-    "erase",
-    "flag",
-    "predicate_options",
-    "current_predicate_option",
-    "check_predicate_option",
+/// The one table of names GOAL programs may not define or call, with the reason a diagnostic
+/// gives (docs/prolog.md). The validator reports them, the engines raise permission errors.
+const PROTECTED: &[(&str, &str)] = &[
+    ("assert", "updates go through GOAL's insert/delete actions"),
+    ("asserta", "updates go through GOAL's insert/delete actions"),
+    ("assertz", "updates go through GOAL's insert/delete actions"),
+    ("retract", "updates go through GOAL's insert/delete actions"),
+    (
+        "retractall",
+        "updates go through GOAL's insert/delete actions",
+    ),
+    ("abolish", "updates go through GOAL's insert/delete actions"),
+    (":", "module qualification is not supported"),
+    (
+        "dynamic",
+        "directives are not supported; GOAL declares predicates itself",
+    ),
+    (
+        "multifile",
+        "directives are not supported; GOAL declares predicates itself",
+    ),
+    (
+        "discontiguous",
+        "directives are not supported; GOAL declares predicates itself",
+    ),
+    ("op", "the operator table is fixed"),
+    (
+        "char_conversion",
+        "directives are not supported; GOAL declares predicates itself",
+    ),
+    (
+        "initialization",
+        "directives are not supported; GOAL declares predicates itself",
+    ),
+    ("ensure_loaded", "use `#import` to load Prolog files"),
+    (
+        "module_transparent",
+        "directives are not supported; GOAL declares predicates itself",
+    ),
+    (
+        "meta_predicate",
+        "directives are not supported; GOAL declares predicates itself",
+    ),
+    (
+        "thread_local",
+        "directives are not supported; GOAL declares predicates itself",
+    ),
+    (
+        "volatile",
+        "directives are not supported; GOAL declares predicates itself",
+    ),
+    ("catch", "exceptions run only on the scryer KR engine"),
+    ("throw", "exceptions run only on the scryer KR engine"),
+    ("numbervars", "not supported by the KR layer"),
+    ("debug", "the debugger is not part of the KR layer"),
+    ("nodebug", "the debugger is not part of the KR layer"),
+    ("subsumes_term", "not supported by the KR layer"),
+    ("tmp_file_stream", "agents do not read or write files"),
+    ("consult", "use `#import` to load Prolog files"),
+    ("use_module", "use `#import` to load Prolog files"),
+    (
+        "module",
+        "directives are not supported; GOAL declares predicates itself",
+    ),
+    (
+        "halt",
+        "an agent stops through its program, never by stopping the process",
+    ),
+    ("set_prolog_flag", "Prolog flags are fixed"),
+    (
+        "nb_setval",
+        "global variables and the recorded database bypass the mental state",
+    ),
+    (
+        "b_setval",
+        "global variables and the recorded database bypass the mental state",
+    ),
+    (
+        "nb_getval",
+        "global variables and the recorded database bypass the mental state",
+    ),
+    (
+        "b_getval",
+        "global variables and the recorded database bypass the mental state",
+    ),
+    (
+        "recorda",
+        "global variables and the recorded database bypass the mental state",
+    ),
+    (
+        "recordz",
+        "global variables and the recorded database bypass the mental state",
+    ),
+    (
+        "erase",
+        "global variables and the recorded database bypass the mental state",
+    ),
+    (
+        "flag",
+        "global variables and the recorded database bypass the mental state",
+    ),
+    ("predicate_options", "not supported by the KR layer"),
+    ("current_predicate_option", "not supported by the KR layer"),
+    ("check_predicate_option", "not supported by the KR layer"),
+];
+
+/// Why file and operating-system predicates are refused.
+const NO_FILES: &str = "agents do not read or write files or run programs";
+
+/// File and operating-system predicates of SWI-Prolog, with their arities: calling one is a
+/// permission error, never an undefined predicate that quietly fails (and never a file
+/// access). Only arities no agent uses for beliefs (`seen/2`, `read/1` stay free), and a
+/// program may define predicates of these names, which then shadow these.
+pub(crate) const FILE_IO: &[(&str, &[u32])] = &[
+    ("open", &[3, 4]),
+    ("read_term", &[2, 3]),
+    ("load_files", &[1, 2]),
+    ("exists_file", &[1]),
+    ("exists_directory", &[1]),
+    ("delete_file", &[1]),
+    ("shell", &[1, 2]),
+    ("getenv", &[2]),
+    ("setenv", &[2]),
 ];
 
 /// The protected names (without the `csv_` family).
 pub(crate) fn protected_names() -> impl Iterator<Item = &'static str> {
-    PROTECTED.iter().copied()
+    PROTECTED.iter().map(|(name, _)| *name)
 }
 
 /// True when `name` may not be used as a predicate.
 pub fn is_protected(name: &str) -> bool {
-    PROTECTED.contains(&name) || name.starts_with("csv_")
+    protected_reason(name).is_some()
+}
+
+/// Why `name` may not be used as a predicate, or `None` when it may.
+pub fn protected_reason(name: &str) -> Option<&'static str> {
+    if name.starts_with("csv_") {
+        return Some(NO_FILES);
+    }
+    PROTECTED
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, why)| *why)
+}
+
+/// Why calling `name/arity` is refused when the program does not define it: a file or
+/// operating-system predicate.
+pub fn file_io_reason(name: &str, arity: u32) -> Option<&'static str> {
+    FILE_IO
+        .iter()
+        .any(|(n, arities)| *n == name && arities.contains(&arity))
+        .then_some(NO_FILES)
 }
 
 impl Pred {

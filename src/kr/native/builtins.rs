@@ -95,21 +95,6 @@ pub(crate) fn is_library(b: B) -> bool {
     TABLE.iter().any(|(x, _, _, lib)| *x == b && *lib)
 }
 
-/// File and operating-system predicates of SWI-Prolog, with their arities: calling one is a
-/// permission error, never an undefined predicate that quietly fails (and never a file
-/// access). Only arities no agent uses for beliefs (`seen/2`, `read/1` stay free).
-const FILE_IO: &[(&str, &[u32])] = &[
-    ("open", &[3, 4]),
-    ("read_term", &[2, 3]),
-    ("load_files", &[1, 2]),
-    ("exists_file", &[1]),
-    ("exists_directory", &[1]),
-    ("delete_file", &[1]),
-    ("shell", &[1, 2]),
-    ("getenv", &[2]),
-    ("setenv", &[2]),
-];
-
 /// The library: built-ins plus the prelude clauses, compiled once.
 pub(crate) fn library() -> &'static Knowledge {
     static LIB: OnceLock<Knowledge> = OnceLock::new();
@@ -132,7 +117,7 @@ pub(crate) fn library() -> &'static Knowledge {
         }
         // So are file and operating-system predicates: an agent never reads or writes files
         // (knowledge may still define predicates of these names; they then shadow these).
-        for (name, arities) in FILE_IO {
+        for (name, arities) in crate::kr::knowledge::FILE_IO {
             for a in arities.iter() {
                 k.table
                     .entry((Sym::intern(name), *a))

@@ -176,41 +176,6 @@ const RESERVED: &[(&str, usize)] = &[
     ("me", 1),
 ];
 
-/// Names rejected in KR content (any arity), with the reason shown to the user.
-const PROTECTED: &[(&str, &str)] = &[
-    ("assert", "updates go through GOAL's insert/delete actions"),
-    ("asserta", "updates go through GOAL's insert/delete actions"),
-    ("assertz", "updates go through GOAL's insert/delete actions"),
-    ("retract", "updates go through GOAL's insert/delete actions"),
-    (
-        "retractall",
-        "updates go through GOAL's insert/delete actions",
-    ),
-    ("abolish", "updates go through GOAL's insert/delete actions"),
-    (":", "module qualification is not supported"),
-    ("catch", "exceptions are not part of GOAL's KR language"),
-    ("throw", "exceptions are not part of GOAL's KR language"),
-    (
-        "dynamic",
-        "directives are not supported; GOAL declares predicates itself",
-    ),
-    ("multifile", "directives are not supported"),
-    ("discontiguous", "directives are not supported"),
-    ("op", "the operator table is fixed"),
-    ("char_conversion", "directives are not supported"),
-    ("initialization", "directives are not supported"),
-    ("ensure_loaded", "use `#import` to load Prolog files"),
-    ("consult", "use `#import` to load Prolog files"),
-    ("use_module", "use `#import` to load Prolog files"),
-    ("module_transparent", "directives are not supported"),
-    ("meta_predicate", "directives are not supported"),
-    ("thread_local", "directives are not supported"),
-    ("volatile", "directives are not supported"),
-    ("numbervars", "not supported by the KR layer"),
-    ("subsumes_term", "not supported by the KR layer"),
-    ("tmp_file_stream", "not supported by the KR layer"),
-];
-
 /// True if `name/arity` is a built-in predicate of the KR layer.
 pub fn is_builtin(name: &str, arity: usize) -> bool {
     BUILTINS
@@ -223,10 +188,8 @@ pub fn is_reserved(name: &str, arity: usize) -> bool {
     RESERVED.iter().any(|(n, a)| *n == name && *a == arity)
 }
 
-/// Why `name` may not be used in KR content, if it is protected.
-pub fn protected_reason(name: &str) -> Option<&'static str> {
-    PROTECTED.iter().find(|(n, _)| *n == name).map(|(_, r)| *r)
-}
+/// Protected and file predicates: one table in the KR layer, shared with the engines.
+pub use crate::kr::knowledge::{file_io_reason, protected_reason};
 
 #[cfg(test)]
 mod tests {

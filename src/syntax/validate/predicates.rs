@@ -1,7 +1,7 @@
 //! KR predicates: queried but never defined, knowledge/beliefs name clashes, protected names in
 //! KR content, and knowledge, beliefs or goals that are never queried.
 
-use super::builtins::{is_builtin, is_reserved, protected_reason};
+use super::builtins::{file_io_reason, is_builtin, is_reserved, protected_reason};
 use super::terms::{calls, conjuncts, Sub};
 use super::{Ctx, Key};
 use crate::diag::Span;
@@ -166,6 +166,13 @@ pub fn check(ctx: &mut Ctx<'_>) {
                     g.span.clone(),
                     why,
                 );
+            } else if let Some(why) = refused_file_call(&u, ctx.module_file, n.name(), a) {
+                ctx.error(
+                    "E0123",
+                    format!("`{}/{a}` is a file or system predicate", n.name()),
+                    g.span.clone(),
+                    why,
+                );
             }
         }
     }
@@ -309,6 +316,22 @@ fn update<'a>(u: &mut Uses, kr_goals: &mut Vec<Sub<'a>>, t: &'a Located, defines
             kr_goals.push(l);
         }
     }
+}
+
+/// Why a call of `name/arity` is refused: a file or operating-system predicate the program does
+/// not define itself (in a module file, the importing program may define it).
+fn refused_file_call(
+    u: &Uses,
+    module_file: bool,
+    name: &str,
+    arity: usize,
+) -> Option<&'static str> {
+    let key = (name.to_string(), arity);
+    let defined = u.knowledge.contains_key(&key) || u.beliefs.contains_key(&key);
+    if module_file || defined {
+        return None;
+    }
+    file_io_reason(name, u32::try_from(arity).ok()?)
 }
 
 /// Protected names and directives in the clauses of a standalone `.pl` file.
