@@ -325,6 +325,30 @@ fn marbel_conditions_are_plain_literals_and_actions_go_to_the_environment() {
 }
 
 #[test]
+fn marbel_bare_use_prefers_the_knowledge_file_to_the_mas_of_the_same_name() {
+    // Course projects name the MAS and the knowledge alike: `team.mas2g` beside `team.pl`.
+    let dir = project(
+        "samename",
+        &[
+            ("team.mas2g", B_MAS),
+            ("team.pl", "next(r1, r2).\n"),
+            (
+                "control.mod2g",
+                "use team.
+                 module control { if in(R), next(R, N) then goTo(N). }",
+            ),
+            (
+                "update.mod2g",
+                "module update { if true then insert(updated). }",
+            ),
+        ],
+    );
+    let mut a = agent(&dir, "r");
+    let o = step(&mut a, &["in(r1)"], &[]);
+    assert_eq!(o.env_actions[0].to_string(), "goTo(r2)");
+}
+
+#[test]
 fn marbel_exit_module_in_decisions_stops_the_agent() {
     let dir = project(
         "stop",

@@ -125,6 +125,16 @@ pub fn assemble(
     a.finish()
 }
 
+/// The files a bare `use X.` may name, in the order tried: a module, an action-spec file, in
+/// MARBEL a `.pl` knowledge file, and last a `.mas2g` (which test files name; a module ignores
+/// it). A MARBEL project often has `X.mas2g` beside `X.pl`: the knowledge must win.
+pub fn bare_use_extensions(gen: Generation) -> &'static [&'static str] {
+    match gen {
+        Generation::Marbel => &["mod2g", "act2g", "pl", "mas2g"],
+        _ => &["mod2g", "act2g", "mas2g"],
+    }
+}
+
 /// The file `r` relative to `dir`, trying the extensions in order when it has none of them.
 pub fn resolve(dir: &Path, r: &str, exts: &[&str]) -> Option<PathBuf> {
     let p = dir.join(r);
@@ -288,29 +298,22 @@ impl Assembler<'_> {
                     None => self.not_found(dir, &r.value, "act2g", span),
                 },
                 Some(UseCase::Mas | UseCase::Planner) => {}
-                None => {
-                    // A bare use: a module, then an action-spec file; in (B) also a `.pl`.
-                    let mut exts = vec!["mod2g", "act2g", "mas2g"];
-                    if self.gen == Generation::Marbel {
-                        exts.push("pl");
+                None => match resolve(dir, &r.value, bare_use_extensions(self.gen)) {
+                    Some(p) => match p.extension().and_then(|e| e.to_str()) {
+                        Some("mod2g") => self.load_module(&p, None, span),
+                        Some("act2g") => self.load_act(&p, span),
+                        Some("pl") => self.load_kr(&p, UseCase::Knowledge, span),
+                        _ => {}
+                    },
+                    None => {
+                        let hint = if self.gen == Generation::Marbel {
+                            "a bare `use` names a .mod2g, .act2g or .pl file"
+                        } else {
+                            "a bare `use` names a .mod2g or .act2g file; write `use f as knowledge.` for a .pl file"
+                        };
+                        self.error("E0607", format!("`{}` not found", r.value), span, hint)
                     }
-                    match resolve(dir, &r.value, &exts) {
-                        Some(p) => match p.extension().and_then(|e| e.to_str()) {
-                            Some("mod2g") => self.load_module(&p, None, span),
-                            Some("act2g") => self.load_act(&p, span),
-                            Some("pl") => self.load_kr(&p, UseCase::Knowledge, span),
-                            _ => {}
-                        },
-                        None => {
-                            let hint = if self.gen == Generation::Marbel {
-                                "a bare `use` names a .mod2g, .act2g or .pl file"
-                            } else {
-                                "a bare `use` names a .mod2g or .act2g file; write `use f as knowledge.` for a .pl file"
-                            };
-                            self.error("E0607", format!("`{}` not found", r.value), span, hint)
-                        }
-                    }
-                }
+                },
             }
         }
     }
@@ -324,7 +327,7 @@ impl Assembler<'_> {
                 Some(UseCase::Module) => &["mod2g"],
                 Some(UseCase::ActionSpec) => &["act2g"],
                 Some(UseCase::Mas | UseCase::Planner) => continue,
-                None => &["mod2g", "act2g", "mas2g", "pl"],
+                None => bare_use_extensions(self.gen),
             };
             for r in &u.refs {
                 let Some(p) = resolve(dir, &r.value, exts) else {

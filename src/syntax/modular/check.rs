@@ -195,7 +195,7 @@ pub fn check_module_file(path: &Path, text: &str, gen: Generation) -> Vec<Diagno
                 Some(super::ast::UseCase::ActionSpec) => &["act2g"],
                 Some(super::ast::UseCase::Mas | super::ast::UseCase::Planner) => continue,
                 Some(_) => &["pl"],
-                None => &["mod2g", "act2g", "mas2g", "pl"],
+                None => super::assemble::bare_use_extensions(gen),
             };
             if super::assemble::resolve(dir, &r.value, exts).is_none() {
                 diags.push(
