@@ -13,6 +13,62 @@ pub enum ScanError {
     Unclosed { start: usize },
 }
 
+impl ScanError {
+    /// The diagnostic a lexer gives for this error in `src` (a file named `file`).
+    pub fn diagnostic(self, src: &str, file: &str) -> crate::diag::Diagnostic {
+        use crate::diag::Diagnostic;
+        match self {
+            ScanError::UnterminatedQuote { start, quote } => Diagnostic::error(
+                "E0011",
+                format!("unterminated quoted item: the {quote} here is never closed"),
+                file,
+                start..start + 1,
+            )
+            .with_hint(format!("add the closing {quote}")),
+            ScanError::UnterminatedComment { start } => Diagnostic::error(
+                "E0012",
+                "unterminated block comment: `/*` without `*/`",
+                file,
+                start..start + 2,
+            )
+            .with_hint("close the comment with `*/`"),
+            ScanError::Unclosed { start } => {
+                let c = &src[start..start + 1];
+                let close = if c == "(" { ")" } else { "}" };
+                Diagnostic::error(
+                    "E0013",
+                    format!("unclosed `{c}`: no matching `{close}` before the end of the file"),
+                    file,
+                    start..start + 1,
+                )
+                .with_hint(format!("add the missing `{close}`"))
+            }
+        }
+    }
+}
+
+/// The position after the whitespace and comments from `pos` (up to `end`) of `src`.
+pub fn skip_trivia(src: &str, mut pos: usize, end: usize) -> Result<usize, ScanError> {
+    let b = &src.as_bytes()[..end];
+    loop {
+        while pos < end && b[pos].is_ascii_whitespace() {
+            pos += 1;
+        }
+        if pos < end && b[pos] == b'%' {
+            while pos < end && b[pos] != b'\n' {
+                pos += 1;
+            }
+        } else if src[pos..end].starts_with("/*") {
+            match src[pos + 2..end].find("*/") {
+                Some(i) => pos += 2 + i + 2,
+                None => return Err(ScanError::UnterminatedComment { start: pos }),
+            }
+        } else {
+            return Ok(pos);
+        }
+    }
+}
+
 /// Walks KR text byte by byte, yielding only the bytes outside quotes and comments.
 pub struct Significant<'a> {
     src: &'a [u8],

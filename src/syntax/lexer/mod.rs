@@ -77,58 +77,14 @@ impl<'s> Lexer<'s> {
     }
 
     fn scan_error(&mut self, e: ScanError) -> Option<(usize, Tok, usize)> {
-        let f = self.file.clone();
-        let d = match e {
-            ScanError::UnterminatedQuote { start, quote } => Diagnostic::error(
-                "E0011",
-                format!("unterminated quoted item: the {quote} here is never closed"),
-                f,
-                start..start + 1,
-            )
-            .with_hint(format!("add the closing {quote}")),
-            ScanError::UnterminatedComment { start } => Diagnostic::error(
-                "E0012",
-                "unterminated block comment: `/*` without `*/`",
-                f,
-                start..start + 2,
-            )
-            .with_hint("close the comment with `*/`"),
-            ScanError::Unclosed { start } => {
-                let c = &self.src[start..start + 1];
-                let close = if c == "(" { ")" } else { "}" };
-                Diagnostic::error(
-                    "E0013",
-                    format!("unclosed `{c}`: no matching `{close}` before the end of the file"),
-                    f,
-                    start..start + 1,
-                )
-                .with_hint(format!("add the missing `{close}`"))
-            }
-        };
+        let d = e.diagnostic(self.src, &self.file);
         self.stop(d)
     }
 
     /// Skips whitespace and comments from `self.pos`.
     fn skip_trivia(&mut self) -> Result<(), ScanError> {
-        let b = self.src.as_bytes();
-        loop {
-            while self.pos < b.len() && b[self.pos].is_ascii_whitespace() {
-                self.pos += 1;
-            }
-            if self.pos < b.len() && b[self.pos] == b'%' {
-                while self.pos < b.len() && b[self.pos] != b'\n' {
-                    self.pos += 1;
-                }
-            } else if self.src[self.pos..].starts_with("/*") {
-                let start = self.pos;
-                match self.src[self.pos + 2..].find("*/") {
-                    Some(i) => self.pos += 2 + i + 2,
-                    None => return Err(ScanError::UnterminatedComment { start }),
-                }
-            } else {
-                return Ok(());
-            }
-        }
+        self.pos = kr::skip_trivia(self.src, self.pos, self.src.len())?;
+        Ok(())
     }
 
     /// KR content in brackets starting at `self.pos`: the whole bracketed span.

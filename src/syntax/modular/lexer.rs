@@ -73,56 +73,13 @@ impl<'s> ModLexer<'s> {
     }
 
     fn scan_error(&mut self, e: ScanError) -> Option<(usize, MTok, usize)> {
-        let d = match e {
-            ScanError::UnterminatedQuote { start, quote } => Diagnostic::error(
-                "E0011",
-                format!("unterminated quoted item: the {quote} here is never closed"),
-                self.file.clone(),
-                start..start + 1,
-            )
-            .with_hint(format!("add the closing {quote}")),
-            ScanError::UnterminatedComment { start } => Diagnostic::error(
-                "E0012",
-                "unterminated block comment: `/*` without `*/`",
-                self.file.clone(),
-                start..start + 2,
-            )
-            .with_hint("close the comment with `*/`"),
-            ScanError::Unclosed { start } => {
-                let c = &self.src[start..start + 1];
-                let close = if c == "(" { ")" } else { "}" };
-                Diagnostic::error(
-                    "E0013",
-                    format!("unclosed `{c}`: no matching `{close}` before the end of the file"),
-                    self.file.clone(),
-                    start..start + 1,
-                )
-                .with_hint(format!("add the missing `{close}`"))
-            }
-        };
+        let d = e.diagnostic(self.src, &self.file);
         self.stop(d)
     }
 
     fn skip_trivia(&mut self) -> Result<(), ScanError> {
-        let b = self.src.as_bytes();
-        loop {
-            while self.pos < self.end && b[self.pos].is_ascii_whitespace() {
-                self.pos += 1;
-            }
-            if self.pos < self.end && b[self.pos] == b'%' {
-                while self.pos < self.end && b[self.pos] != b'\n' {
-                    self.pos += 1;
-                }
-            } else if self.src[self.pos..self.end].starts_with("/*") {
-                let start = self.pos;
-                match self.src[self.pos + 2..self.end].find("*/") {
-                    Some(i) => self.pos += 2 + i + 2,
-                    None => return Err(ScanError::UnterminatedComment { start }),
-                }
-            } else {
-                return Ok(());
-            }
-        }
+        self.pos = kr::skip_trivia(self.src, self.pos, self.end)?;
+        Ok(())
     }
 
     fn kr_span(&mut self, open: u8, close: u8, tok: MTok) -> Option<(usize, MTok, usize)> {
