@@ -511,3 +511,135 @@ fn humancount_and_init_parameters_create_humans_and_epartners() {
         bw.warnings()
     );
 }
+
+fn map_errors(source: &str) -> Vec<String> {
+    match map::from_toml(source, "e.toml") {
+        Ok(_) => Vec::new(),
+        Err(ds) => ds
+            .iter()
+            .map(|d| format!("{} {}", d.code, d.message))
+            .collect(),
+    }
+}
+
+#[test]
+fn toml_maps_list_epartners_and_human_spawn_points() {
+    let tiny = map::builtin_source("tiny").unwrap();
+    let source = format!(
+        "{tiny}\n[[epartners]]\nx = 15.0\ny = 5.0\n\n\
+         [[epartners]]\nx = 5.0\ny = 15.0\nfunctionalities = [\"Forget-me-not\"]\n"
+    );
+    let m = map::from_toml(&source, "e.toml").unwrap();
+    assert_eq!(m.epartners.len(), 2);
+    assert_eq!(m.epartners[0].functionalities, Functionality::all());
+    assert_eq!(m.epartners[1].functionalities, [Functionality::ForgetMeNot]);
+    // Written back and read again, nothing is lost.
+    let again = map::from_toml(&map::to_toml(&m), "again.toml").unwrap();
+    assert_eq!(again.epartners, m.epartners);
+    // Maps without e-partners or human spawn points are written without those keys.
+    let plain = map::to_toml(&map::builtin("tiny").unwrap().unwrap());
+    assert!(!plain.contains("epartners") && !plain.contains("human_spawns"));
+    // Banana's human spawn points are used before the robots' left over.
+    let banana = map::builtin("banana").unwrap().unwrap();
+    assert_eq!(banana.human_spawns.len(), 3);
+
+    let bad = |extra: &str| map_errors(&format!("{tiny}\n{extra}"));
+    let e = bad("[[epartners]]\nx = 95.0\ny = 5.0\n");
+    assert!(
+        e.iter()
+            .any(|d| d.starts_with("M0010")
+                && d.contains("e-partner 1 at (95, 5) is outside the map")),
+        "{e:?}"
+    );
+    let e = bad("[[epartners]]\nx = 5.0\ny = 5.0\nfunctionalities = []\n");
+    assert!(
+        e.iter()
+            .any(|d| d.contains("e-partner 1 must list each functionality")),
+        "{e:?}"
+    );
+    let e = bad("[[epartners]]\nx = 5.0\ny = 5.0\nfunctionalities = [\"GPS\", \"GPS\"]\n");
+    assert!(e.iter().any(|d| d.contains("at most once")), "{e:?}");
+    let e = bad("[[epartners]]\nx = 5.0\ny = 5.0\nfunctionalities = [\"Radar\"]\n");
+    assert!(e.iter().any(|d| d.contains("Radar")), "{e:?}");
+    let with_humans = tiny.replace(
+        "spawns = [[5.0, 5.0]",
+        "human_spawns = [[5.0, 15.0], [26.0, 5.0]]\nspawns = [[5.0, 5.0]",
+    );
+    let e = map_errors(&with_humans);
+    assert!(
+        e.iter().any(|d| d.starts_with("M0008")
+            && d.contains("human spawn point 1 (5, 15) is inside room `RoomA`")),
+        "{e:?}"
+    );
+    assert!(
+        e.iter().any(|d| d.starts_with("M0007")
+            && d.contains("spawn point 3 (25, 5) and human spawn point 2 (26, 5) overlap")),
+        "{e:?}"
+    );
+}
+
+fn shared_banana_xml() -> Option<String> {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../shared/bw4t-maps/banana.xml"
+    );
+    match std::fs::read_to_string(path) {
+        Ok(text) => Some(text),
+        Err(_) => {
+            println!("skipped: {path} is absent");
+            None
+        }
+    }
+}
+
+#[test]
+fn xml_maps_bring_epartner_entities() {
+    use goal::bw4t::xml;
+    let Some(banana) = shared_banana_xml() else {
+        return;
+    };
+    let epartner = |body: &str| {
+        banana.replacen(
+            "<entities>",
+            &format!(
+                "<entities><name>EPartner1</name><position><x>25.0</x><y>61.0</y></position>\
+                 <type>EPARTNER</type>{body}</entities>\n    <entities>"
+            ),
+            1,
+        )
+    };
+    let m = xml::import(&epartner(""), "banana-e.xml").unwrap();
+    // An e-partner entity is no spawn point.
+    assert_eq!(m.spawns.len(), 3);
+    assert_eq!(m.epartners.len(), 1);
+    assert_eq!((m.epartners[0].x, m.epartners[0].y), (25.0, 61.0));
+    assert_eq!(m.epartners[0].functionalities, Functionality::all());
+    let m = xml::import(
+        &epartner("<functionality>GPS</functionality>"),
+        "banana-gps.xml",
+    )
+    .unwrap();
+    assert_eq!(m.epartners[0].functionalities, [Functionality::Gps]);
+    let e = xml::import(
+        &epartner("<functionality>Radar</functionality>"),
+        "banana-bad.xml",
+    )
+    .unwrap_err();
+    assert_eq!(e[0].code, "M0012");
+    assert!(
+        e[0].message.contains("unknown functionality `Radar`"),
+        "{}",
+        e[0].message
+    );
+    // The imported e-partner lies where it is and is the world's EPartner1.
+    let m = xml::import(&epartner(""), "banana-e.xml").unwrap();
+    let bw = Bw4t::new(
+        &m,
+        &Bw4tConfig {
+            robots: Some(1),
+            ..Bw4tConfig::default()
+        },
+    );
+    let kinds: Vec<String> = bw.entities().into_iter().map(|e| e.kind).collect();
+    assert_eq!(kinds, ["bot", "epartner"]);
+}
