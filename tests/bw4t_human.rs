@@ -465,7 +465,8 @@ fn scene_and_stats_show_humans_and_who_holds_which_epartner() {
         e["functionalities"],
         serde_json::json!(["GPS", "Forget-me-not"])
     );
-    let stats = serde_json::to_value(bw.run_stats()).unwrap();
+    // What `--stats` writes for the environment.
+    let stats = Environment::stats(&bw);
     assert_eq!(stats["robots"][1]["name"], "Human1");
     assert_eq!(stats["robots"][1]["human"], true);
     assert!(stats["robots"][0].get("human").is_none());

@@ -277,3 +277,105 @@ fn a_scripted_person_and_two_agents_complete_the_game() {
     );
     assert_eq!(stats.epartners[0].holder.as_deref(), Some(HUMAN));
 }
+
+/// The JSON lines of a trace file.
+fn trace_lines(path: &Path) -> Vec<serde_json::Value> {
+    std::fs::read_to_string(path)
+        .expect("trace written")
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("a JSON line"))
+        .collect()
+}
+
+#[test]
+fn with_nobody_playing_the_team_completes_the_game_and_the_human_stands_still() {
+    let dir = std::env::temp_dir().join(format!("goal-humans-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (trace, stats) = (dir.join("run.jsonl"), dir.join("stats.json"));
+    let mas = Path::new(env!("CARGO_MANIFEST_DIR")).join("agents/bw4t/humans.mas2g");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_goal"))
+        .arg("run")
+        .arg(&mas)
+        .arg("--trace")
+        .arg(&trace)
+        .arg("--stats")
+        .arg(&stats)
+        .output()
+        .expect("goal runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let lines = trace_lines(&trace);
+    let agents: Vec<(&str, &str)> = lines[0]["agents"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| (a["name"].as_str().unwrap(), a["file"].as_str().unwrap()))
+        .collect();
+    let runs = |name: &str, file: &str| agents.iter().any(|(n, f)| *n == name && f.ends_with(file));
+    assert!(runs("Human1", "agents/bw4t/human.goal"), "{agents:?}");
+    assert!(runs("EPartner1", "agents/bw4t/epartner.goal"), "{agents:?}");
+    // The scene: Human1 is drawn as a human, the e-partner lies where Human1 started.
+    let first = lines.iter().find(|l| l["type"] == "world").unwrap();
+    assert_eq!(first["set"]["robots/Human1/kind"], "human");
+    assert_eq!(
+        first["set"]["epartners/EPartner1/holder"],
+        serde_json::Value::Null
+    );
+    assert_eq!(
+        first["set"]["epartners/EPartner1/pos"],
+        serde_json::json!([25.0, 61.0])
+    );
+    // Nobody asked Human1 for anything: it never acted.
+    let human_actions = lines
+        .iter()
+        .filter(|l| l["type"] == "action" && l["agent"] == HUMAN)
+        .count();
+    assert_eq!(human_actions, 0);
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert_eq!(stats["end"], "completed");
+    let robots = stats["env"]["robots"].as_array().unwrap();
+    let human = robots.iter().find(|r| r["name"] == HUMAN).unwrap();
+    assert_eq!(human["human"], true);
+    assert_eq!(human["distance"], 0.0);
+    assert_eq!(stats["env"]["epartners"][0]["name"], "EPartner1");
+    assert_eq!(
+        stats["env"]["epartners"][0]["holder"],
+        serde_json::Value::Null
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_dropped_epartner_tells_the_person_where_it_was_left_behind() {
+    let mut game = setup();
+    let mut inbox = BTreeMap::new();
+    let mut rounds = |game: &mut Game, n: u64| {
+        for _ in 0..n {
+            inbox = game.round(std::mem::take(&mut inbox));
+            game.bw.tick();
+        }
+    };
+    rounds(&mut game, 2);
+    game.bw.input(HUMAN, &t("pickUpEPartner")).unwrap();
+    rounds(&mut game, 3);
+    game.bw.input(HUMAN, &t("goTo('LeftHallD')")).unwrap();
+    rounds(&mut game, 120);
+    game.bw.input(HUMAN, &t("dropEPartner")).unwrap();
+    rounds(&mut game, 4);
+    assert!(game.failures.is_empty(), "{:?}", game.failures);
+    let w = game.bw.world();
+    assert_eq!(w.epartners[0].holder, None);
+    assert!(w.epartners[0].left_behind);
+    let told: Vec<&String> = game
+        .printed
+        .iter()
+        .filter(|l| l.contains("leftBehind"))
+        .collect();
+    assert_eq!(
+        told,
+        ["message('EPartner1',leftBehind('EPartner1','LeftHallD'))"],
+        "{:?}",
+        game.printed
+    );
+}
