@@ -115,10 +115,15 @@ struct Game {
     failures: Vec<String>,
 }
 
-fn setup() -> Game {
+/// `agents/bw4t/humans.mas2g`: the programs `robot_team`, `human` and `epartner`.
+fn system() -> goal::mas::MasSystem {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("agents/bw4t");
-    let system = goal::mas::system::load_mas(&dir.join("humans.mas2g"))
-        .unwrap_or_else(|p| panic!("humans.mas2g loads: {:?}", p[0].render()));
+    goal::mas::system::load_mas(&dir.join("humans.mas2g"))
+        .unwrap_or_else(|p| panic!("humans.mas2g loads: {:?}", p[0].render()))
+}
+
+fn setup() -> Game {
+    let system = system();
     let m = map::builtin("banana").unwrap().unwrap();
     let bw = Bw4t::new(
         &m,
@@ -378,4 +383,37 @@ fn a_dropped_epartner_tells_the_person_where_it_was_left_behind() {
         "{:?}",
         game.printed
     );
+}
+
+#[test]
+fn the_human_agent_sends_the_persons_messages_with_their_mood() {
+    let program = system().programs["human"].clone();
+    let config = AgentConfig {
+        agents: vec!["Bot1".into(), "Bot2".into(), HUMAN.into()],
+        ..AgentConfig::default()
+    };
+    let mut agent = Agent::new(program, HUMAN, config);
+    let out = agent.step(
+        &[
+            t("sendMessage(all, int(at(_, 'RoomA1')))"),
+            t("sendMessage('Bot2', imp(in('Bot2', 'RoomB1')))"),
+            t("sendMessage(all, at('Yellow', 'RoomC1'))"),
+        ],
+        &[],
+    );
+    let mut sent: Vec<String> = out
+        .messages
+        .iter()
+        .map(|m| format!("{}: {}", m.receiver, m.content))
+        .collect();
+    sent.sort();
+    // Contents are kept mood-wrapped: `!X` is imp(X), `?X` is int(X); the question's open
+    // subject stays a variable.
+    assert_eq!(sent.len(), 5, "{sent:?}");
+    assert_eq!(sent[0], "Bot1: at('Yellow','RoomC1')");
+    assert!(sent[1].starts_with("Bot1: int(at(_"), "{sent:?}");
+    assert!(sent[1].ends_with(",'RoomA1'))"), "{sent:?}");
+    assert_eq!(sent[2], "Bot2: at('Yellow','RoomC1')");
+    assert_eq!(sent[3], "Bot2: imp(in('Bot2','RoomB1'))");
+    assert!(sent[4].starts_with("Bot2: int(at(_"), "{sent:?}");
 }
