@@ -3,7 +3,7 @@
 //! knows the rooms and the zone it is in) and Forget-me-not (knows who holds it and when it is
 //! left behind). Humans pick them up and drop them with `pickUpEPartner`/`dropEPartner`; a held
 //! e-partner moves with its holder. Their percepts and action follow the BW4T 3 interface
-//! (docs/bw4t.md, "E-partners").
+//! (docs/bw4t.md, "Humans and e-partners").
 
 use super::geometry::Pos;
 use super::map::{EPartnerSpec, Functionality};
