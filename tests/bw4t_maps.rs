@@ -252,6 +252,8 @@ fn shared_maps() -> Option<PathBuf> {
 /// A map with zones sorted by name and neighbour lists sorted, for comparing layouts.
 fn normalised(mut m: Map) -> Map {
     m.name = String::new();
+    // BW4T XML maps say nothing about where humans start; the built-in maps do.
+    m.human_spawns.clear();
     for z in &mut m.zones {
         z.neighbours.sort();
     }

@@ -132,11 +132,18 @@ fn goal_check_compares_env_actions_and_percepts_with_the_environment() {
 }
 
 #[test]
-fn human_bots_are_warned_about_once() {
+fn client_settings_are_warned_about_once() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/mas2g/invalid");
-    let out = goal(&dir, &["run", "W0207_human_bots.mas2g", "--max-ticks", "3"]);
+    let out = goal(
+        &dir,
+        &["run", "W0207_client_config.mas2g", "--max-ticks", "3"],
+    );
     let err = text(&out.stderr);
-    assert_eq!(err.matches("not available yet").count(), 1, "{err}");
+    assert_eq!(
+        err.matches("configuration files are not supported").count(),
+        1,
+        "{err}"
+    );
     assert!(err.contains("BW4T client version 3.8.0"), "{err}");
     // `agentcount = "1"`: one robot entity, so one agent, although the map has three spawns.
     let agents = err.lines().skip_while(|l| !l.starts_with("agent ")).skip(1);

@@ -863,13 +863,13 @@ launchpolicy { when * launch r. }";
     let p = load_mas(&dir.join("team.mas2g")).expect_err("does not load");
     assert_eq!(p[0].diagnostic.code, "E0610");
     // Client parameters the built-in BW4T does not use, and an entity type it never has.
-    let notes = "use \"BW4TClient.jar\" as environment with Map = \"Rainbow\", agentcount = \"2\", speed = \"20\", humancount = \"1\", clientip = \"localhost\".
+    let notes = "use \"BW4TClient.jar\" as environment with Map = \"Rainbow\", agentcount = \"2\", speed = \"20\", configfile = \"bots.xml\", clientip = \"localhost\".
 define r as agent { use main as main module. }
 launchpolicy { when type = robot launch r. }";
     let dir = project("notes", &[("team.mas2g", notes), ("main.mod2g", IDLE_MAIN)]);
     let sys = load_mas(&dir.join("team.mas2g")).expect("loads");
-    // The client's `speed` and connection keys mean nothing here and are dropped; human bots
-    // are announced as not available yet (the same selection as for a 2014 `.mas2g`).
+    // The client's `speed` and connection keys mean nothing here and are dropped; its bot
+    // configuration files are announced as not read (the same selection as for a 2014 `.mas2g`).
     let w: Vec<(&str, &str)> = sys
         .warnings
         .iter()
@@ -877,7 +877,7 @@ launchpolicy { when type = robot launch r. }";
         .collect();
     assert_eq!(w.len(), 1, "{w:?}");
     assert_eq!(w[0].0, "W0207");
-    assert!(w[0].1.contains("humancount"), "{w:?}");
+    assert!(w[0].1.contains("configfile"), "{w:?}");
     let env = sys.env.expect("the built-in BW4T").params;
     assert_eq!(
         env.get("map").map(|t| t.to_string()),
