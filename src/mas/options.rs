@@ -17,6 +17,8 @@ pub struct RunOptions {
     pub map: Option<String>,
     /// Number of robots in the environment.
     pub robots: Option<usize>,
+    /// Number of HumanBots (robots people play from the browser view; BW4T's `humancount`).
+    pub humans: Option<usize>,
     /// Stop after this many ticks (rounds without an environment).
     pub max_ticks: u64,
     /// Worker threads for the agents.
@@ -58,6 +60,7 @@ impl Default for RunOptions {
             seed: None,
             map: None,
             robots: None,
+            humans: None,
             max_ticks: 10_000,
             workers: std::thread::available_parallelism().map_or(1, |n| n.get()),
             skip_idle: true,
@@ -82,6 +85,7 @@ impl RunOptions {
     pub fn replay_json(&self) -> serde_json::Value {
         serde_json::json!({
             "robots": self.robots,
+            "humans": self.humans,
             "max_beliefs": self.max_beliefs,
             "max_mailbox": self.max_mailbox,
             "max_sent": self.max_sent,
@@ -95,6 +99,9 @@ impl RunOptions {
         let size = |n: u64| usize::try_from(n).unwrap_or(usize::MAX);
         if let Some(r) = get("robots") {
             self.robots = Some(size(r));
+        }
+        if let Some(h) = get("humans") {
+            self.humans = Some(size(h));
         }
         if let Some(n) = get("max_beliefs") {
             self.max_beliefs = size(n);
