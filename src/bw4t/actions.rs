@@ -1,5 +1,6 @@
 //! The robot actions of the BW4T interface: `goTo/1`, `goTo/2`, `goToBlock/1`, `pickUp/1`,
-//! `putDown/0`, `sendMessage/2` (and `navigateObstacles/0`, refused until implemented).
+//! `putDown/0`, `sendMessage/2`, `navigateObstacles/0`, and the human-only
+//! `pickUpEPartner/0`/`dropEPartner/0` (nothing happens for other robots).
 
 use super::geometry::Pos;
 use super::world::{BlockState, World, MAX_INBOX};
@@ -16,9 +17,12 @@ pub const ACTIONS: &[&str] = &[
     "putDown/0",
     "sendMessage/2",
     "navigateObstacles/0",
+    "pickUpEPartner/0",
+    "dropEPartner/0",
 ];
 
-fn name_arg(t: &Term) -> Option<&str> {
+/// An atom or string argument as text.
+pub(crate) fn name_arg(t: &Term) -> Option<&str> {
     match t {
         Term::Atom(s) => Some(s.name()),
         Term::Str(s) => Some(s),
@@ -85,6 +89,8 @@ impl World {
                 )),
             },
             ("navigateObstacles", 0) => self.navigate_obstacles(r),
+            ("pickUpEPartner", 0) => self.pick_up_epartner(r),
+            ("dropEPartner", 0) => self.drop_epartner(r),
             _ => ActionResult::fail(crate::env::unknown_action(action, ACTIONS)),
         }
     }
@@ -270,23 +276,39 @@ impl World {
     }
 
     fn send_message(&mut self, r: usize, to: &str, content: &Term) -> ActionResult {
-        let sender: Sym = self.robots[r].sym;
-        let receivers: Vec<usize> = if to == "all" || to == "allother" {
-            (0..self.robots.len()).filter(|&o| o != r).collect()
-        } else {
-            match self.robot_index(to) {
-                Some(o) => vec![o],
-                None => return ActionResult::fail(format!("unknown receiver `{to}`")),
-            }
-        };
-        for o in receivers {
-            let inbox = &mut self.robots[o].inbox;
+        let sent = self.deliver_message(self.robots[r].sym, Some(r), to, content);
+        if sent.is_ok() {
+            self.robots[r].stats.messages_sent += 1;
+        }
+        sent
+    }
+
+    /// Puts `message(From, Content)` in the inbox of `to` (a robot or an e-partner by name), or
+    /// of every robot other than `sender` for `all`/`allother`.
+    pub(crate) fn deliver_message(
+        &mut self,
+        from: Sym,
+        sender: Option<usize>,
+        to: &str,
+        content: &Term,
+    ) -> ActionResult {
+        let push = |inbox: &mut std::collections::VecDeque<(Sym, Term)>| {
             if inbox.len() >= MAX_INBOX {
                 inbox.pop_front();
             }
-            inbox.push_back((sender, content.clone()));
+            inbox.push_back((from, content.clone()));
+        };
+        if to == "all" || to == "allother" {
+            for o in (0..self.robots.len()).filter(|&o| Some(o) != sender) {
+                push(&mut self.robots[o].inbox);
+            }
+        } else if let Some(o) = self.robot_index(to) {
+            push(&mut self.robots[o].inbox);
+        } else if let Some(e) = self.epartner_index(to) {
+            push(&mut self.epartners[e].inbox);
+        } else {
+            return ActionResult::fail(format!("unknown receiver `{to}`"));
         }
-        self.robots[r].stats.messages_sent += 1;
         ActionResult::Ok
     }
 }

@@ -83,15 +83,7 @@ pub fn translate(params: &InitParams, from_client: bool) -> Translated {
                 out.params.insert("robots".into(), value);
             }
             "humancount" => {
-                if matches!(value, Term::Int(n) if n > 0) || !matches!(value, Term::Int(_)) {
-                    out.warnings.push((
-                        key.clone(),
-                        format!(
-                            "`{key} = {value}`: human-controlled bots are not available yet; \
-                             no human entities are created"
-                        ),
-                    ));
-                }
+                out.params.insert("humans".into(), value);
             }
             "agentclass" => out.warnings.push((
                 key.clone(),
@@ -155,15 +147,16 @@ mod tests {
         );
         assert_eq!(t.params.get("robots"), Some(&Term::Int(3)));
         assert_eq!(t.params.get("map"), Some(&Term::atom("super-random")));
-        assert_eq!(t.params.len(), 2);
+        assert_eq!(t.params.get("humans"), Some(&Term::Int(0)));
+        assert_eq!(t.params.len(), 3);
         assert!(t.warnings.is_empty());
     }
 
     #[test]
-    fn humans_are_warned_about() {
-        let t = translate(&p(&[("humancount", Term::Int(1))]), true);
-        assert_eq!(t.warnings.len(), 1);
-        assert!(t.warnings[0].1.contains("not available yet"));
+    fn humancount_asks_for_human_controlled_robots() {
+        let t = translate(&p(&[("humancount", Term::string("2"))]), true);
+        assert!(t.warnings.is_empty());
+        assert_eq!(t.params.get("humans"), Some(&Term::Int(2)));
     }
 
     #[test]

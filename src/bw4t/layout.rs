@@ -56,7 +56,11 @@ pub(crate) fn check(
             );
         }
     }
-    for (i, s) in map.spawns.iter().enumerate() {
+    for (i, s) in map.spawns.iter().chain(&map.human_spawns).enumerate() {
+        let (label, n) = match i.checked_sub(map.spawns.len()) {
+            Some(h) => ("human spawn point", h),
+            None => ("spawn point", i),
+        };
         let inside = s[0] >= 0.0 && s[1] >= 0.0 && s[0] <= map.width && s[1] <= map.height;
         if s.iter().all(|v| v.is_finite()) && !inside {
             out.push(
@@ -64,8 +68,8 @@ pub(crate) fn check(
                     "M0015",
                     Some("@spawns"),
                     format!(
-                        "spawn point {} ({}, {}) is outside the map ({} x {})",
-                        i + 1,
+                        "{label} {} ({}, {}) is outside the map ({} x {})",
+                        n + 1,
                         s[0],
                         s[1],
                         map.width,

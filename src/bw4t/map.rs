@@ -55,8 +55,52 @@ pub struct Map {
     /// Robot spawn points `[x, y]`, used in order.
     #[serde(default)]
     pub spawns: Vec<[f64; 2]>,
+    /// Spawn points of human-controlled robots (`Human1`, ...), used in order before the
+    /// robots' spawn points left over.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub human_spawns: Vec<[f64; 2]>,
+    /// E-partners lying on the map at the start.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub epartners: Vec<EPartnerSpec>,
     #[serde(default)]
     pub zones: Vec<ZoneSpec>,
+}
+
+/// An e-partner of a map: where it lies at the start and what it can do.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EPartnerSpec {
+    pub x: f64,
+    pub y: f64,
+    /// Its functionalities; both when absent.
+    #[serde(default = "Functionality::all")]
+    pub functionalities: Vec<Functionality>,
+}
+
+/// What an e-partner can do (the BW4T 3 interface's two functionalities).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+pub enum Functionality {
+    /// Helps its holder navigate: knows the rooms and the zone it is in.
+    #[serde(rename = "GPS")]
+    Gps,
+    /// Makes sure its holder does not forget it: knows who holds it and when it is left behind.
+    #[serde(rename = "Forget-me-not")]
+    ForgetMeNot,
+}
+
+impl Functionality {
+    /// Both functionalities.
+    pub fn all() -> Vec<Functionality> {
+        vec![Functionality::Gps, Functionality::ForgetMeNot]
+    }
+
+    /// The name used in maps and percepts: `GPS`, `Forget-me-not`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Functionality::Gps => "GPS",
+            Functionality::ForgetMeNot => "Forget-me-not",
+        }
+    }
 }
 
 /// The kind of a zone.
@@ -206,8 +250,10 @@ pub(crate) enum SpanStyle {
 pub(crate) fn zone_span(source: &str, name: &str, style: SpanStyle) -> Span {
     if let Some(key) = name.strip_prefix('@') {
         let needle = match (style, key) {
+            (SpanStyle::Toml, "epartners") => "[[epartners]]".to_string(),
             (SpanStyle::Toml, k) => format!("{k} ="),
             (SpanStyle::Xml, "spawns") => "<entities>".to_string(),
+            (SpanStyle::Xml, "epartners") => "<type>EPARTNER</type>".to_string(),
             (SpanStyle::Xml, k) => format!("<{k}>"),
         };
         return source
@@ -369,50 +415,8 @@ pub(crate) fn check(map: &Map, file: &str, source: &str, style: SpanStyle) -> Ve
             .with_hint("add a room named DropZone with a door"),
         );
     }
-    for (i, s) in map.spawns.iter().enumerate() {
-        if s.iter().any(|v| !v.is_finite()) {
-            errs.push(err(
-                "M0010",
-                Some("@spawns"),
-                format!("spawn point {} has bad numbers", i + 1),
-            ));
-            continue;
-        }
-        for (j, o) in map.spawns.iter().enumerate().take(i) {
-            if (s[0] - o[0]).abs() < 2.0 && (s[1] - o[1]).abs() < 2.0 {
-                errs.push(err(
-                    "M0007",
-                    Some("@spawns"),
-                    format!(
-                        "spawn points {} ({}, {}) and {} ({}, {}) overlap (robots are 2 x 2)",
-                        j + 1,
-                        o[0],
-                        o[1],
-                        i + 1,
-                        s[0],
-                        s[1]
-                    ),
-                ));
-            }
-        }
-        if let Some(z) = map.zones.iter().find(|z| {
-            z.kind.is_room()
-                && (s[0] - z.x).abs() * 2.0 < z.width
-                && (s[1] - z.y).abs() * 2.0 < z.height
-        }) {
-            errs.push(err(
-                "M0008",
-                Some(&z.name),
-                format!(
-                    "spawn point {} ({}, {}) is inside room `{}`",
-                    i + 1,
-                    s[0],
-                    s[1],
-                    z.name
-                ),
-            ));
-        }
-    }
+    errs.extend(check_spawns(map, &err));
+    errs.extend(check_epartners(map, &err));
     errs.extend(super::layout::check(map, &err));
     let rooms = map
         .zones
@@ -434,6 +438,110 @@ pub(crate) fn check(map: &Map, file: &str, source: &str, style: SpanStyle) -> Ve
                 "{random} random blocks do not fit in {rooms} rooms of at most {MAX_RANDOM_BLOCKS_PER_ROOM}"
             ),
         ));
+    }
+    errs
+}
+
+/// Every spawn point (robots' first, then humans'), named as diagnostics say it.
+fn spawn_points(map: &Map) -> Vec<(String, [f64; 2])> {
+    let robots = map
+        .spawns
+        .iter()
+        .enumerate()
+        .map(|(i, s)| (format!("spawn point {}", i + 1), *s));
+    let humans = map
+        .human_spawns
+        .iter()
+        .enumerate()
+        .map(|(i, s)| (format!("human spawn point {}", i + 1), *s));
+    robots.chain(humans).collect()
+}
+
+/// Spawn points must be numbers, apart from each other and outside rooms.
+fn check_spawns(
+    map: &Map,
+    err: &dyn Fn(&str, Option<&str>, String) -> Diagnostic,
+) -> Vec<Diagnostic> {
+    let mut errs = Vec::new();
+    let points = spawn_points(map);
+    for (i, (label, s)) in points.iter().enumerate() {
+        let key = if label.starts_with("human") {
+            "@human_spawns"
+        } else {
+            "@spawns"
+        };
+        if s.iter().any(|v| !v.is_finite()) {
+            errs.push(err("M0010", Some(key), format!("{label} has bad numbers")));
+            continue;
+        }
+        for (other, o) in points.iter().take(i) {
+            if (s[0] - o[0]).abs() < 2.0 && (s[1] - o[1]).abs() < 2.0 {
+                errs.push(err(
+                    "M0007",
+                    Some(key),
+                    format!(
+                        "{other} ({}, {}) and {label} ({}, {}) overlap (robots are 2 x 2)",
+                        o[0], o[1], s[0], s[1]
+                    ),
+                ));
+            }
+        }
+        if let Some(z) = map.zones.iter().find(|z| {
+            z.kind.is_room()
+                && (s[0] - z.x).abs() * 2.0 < z.width
+                && (s[1] - z.y).abs() * 2.0 < z.height
+        }) {
+            errs.push(err(
+                "M0008",
+                Some(&z.name),
+                format!("{label} ({}, {}) is inside room `{}`", s[0], s[1], z.name),
+            ));
+        }
+    }
+    errs
+}
+
+/// E-partners must lie inside the map, each with at least one functionality, listed once.
+fn check_epartners(
+    map: &Map,
+    err: &dyn Fn(&str, Option<&str>, String) -> Diagnostic,
+) -> Vec<Diagnostic> {
+    let mut errs = Vec::new();
+    for (i, e) in map.epartners.iter().enumerate() {
+        let inside = e.x.is_finite()
+            && e.y.is_finite()
+            && (0.0..=map.width).contains(&e.x)
+            && (0.0..=map.height).contains(&e.y);
+        if !inside {
+            errs.push(err(
+                "M0010",
+                Some("@epartners"),
+                format!(
+                    "e-partner {} at ({}, {}) is outside the map ({} x {})",
+                    i + 1,
+                    e.x,
+                    e.y,
+                    map.width,
+                    map.height
+                ),
+            ));
+        }
+        let mut f = e.functionalities.clone();
+        f.sort();
+        f.dedup();
+        if f.is_empty() || f.len() != e.functionalities.len() {
+            errs.push(
+                err(
+                    "M0010",
+                    Some("@epartners"),
+                    format!(
+                        "e-partner {} must list each functionality at most once, and at least one",
+                        i + 1
+                    ),
+                )
+                .with_hint("functionalities = [\"GPS\", \"Forget-me-not\"]"),
+            );
+        }
     }
     errs
 }

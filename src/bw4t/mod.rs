@@ -19,9 +19,11 @@
 //! `collided`, with `bumped(Name)`; `navigateObstacles` then plans a detour on the unit grid
 //! ([`obstacles`]) or fails and sets `oldTargetUnreachable(Id, 1)`.
 //!
+//! Human-controlled robots (`Human1`, ... of type `human`, init `humans`/`humancount`) get a
+//! person's requests as percepts ([`human`], through [`Environment::input`]) and can carry the
+//! map's e-partners ([`epartner`], entities `EPartner1`, ... of type `epartner`).
+//!
 //! ## Not there yet
-//! * human-controlled robots and their GUI percepts (`humancount > 0` is warned about);
-//!   e-partners and their actions/percepts;
 //! * the size-overload/speed handicaps are plain settings ([`RobotConfig`]) rather than BW4T
 //!   bot-configuration files.
 //!
@@ -67,8 +69,10 @@
 pub mod actions;
 pub mod client;
 pub mod color;
+pub mod epartner;
 pub mod geometry;
 pub mod greedy;
+pub mod human;
 pub mod layout;
 pub mod map;
 pub mod messages;
@@ -96,8 +100,12 @@ use crate::term::Term;
 pub struct Bw4tConfig {
     /// Seed for random content (maps without their own seed, drop placement).
     pub seed: u64,
-    /// Number of robots; `None` = one per spawn point.
+    /// Number of robots; `None` = one per spawn point (those humans need left aside).
     pub robots: Option<usize>,
+    /// Number of human-controlled robots (`Human1`, ...).
+    pub humans: usize,
+    /// E-partners to add besides the map's (at the humans' positions, then at spawn points).
+    pub epartners: usize,
     /// Settings of every robot.
     pub robot: RobotConfig,
     /// Names of robots that are colour-blind (besides `robot.colorblind`).
@@ -119,6 +127,8 @@ pub const INIT_PARAMS: &[&str] = &[
     "map",
     "seed",
     "robots",
+    "humans",
+    "epartners",
     "gripperCapacity",
     "colorblind",
     "battery",
@@ -151,10 +161,12 @@ impl Bw4t {
             world.one_bot_per_corridor_zone = v;
         }
         let team_robots: usize = config.teams.iter().sum();
+        // Humans beyond the map's human spawn points take ordinary ones.
+        let humans_on_spawns = config.humans.saturating_sub(map.human_spawns.len());
         let wanted = match config.robots {
             Some(n) => n,
             None if team_robots > 0 => team_robots,
-            None => map.spawns.len(),
+            None => map.spawns.len().saturating_sub(humans_on_spawns),
         };
         let mut warnings = Vec::new();
         for i in 0..wanted {
@@ -170,6 +182,19 @@ impl Bw4t {
                 warnings.push(format!("{e}: {} robot(s) not created", wanted - i));
                 break;
             }
+        }
+        for i in 0..config.humans {
+            if let Err(e) = world.spawn_human(config.robot.clone()) {
+                warnings.push(format!(
+                    "{e}: {} human-controlled robot(s) not created",
+                    config.humans - i
+                ));
+                break;
+            }
+        }
+        world.place_epartners(&map.epartners);
+        if let Err(e) = world.add_epartners(config.epartners) {
+            warnings.push(e);
         }
         world.stats.map = map.name.clone();
         world.stats.sequence_length = world.sequence.len();
@@ -220,6 +245,14 @@ impl Bw4t {
                 },
                 "robots" => match v {
                     Term::Int(i) if (0..=1000).contains(i) => cfg.robots = Some(*i as usize),
+                    _ => return Err(bad(key, "an integer 0..1000", v)),
+                },
+                "humans" => match v {
+                    Term::Int(i) if (0..=1000).contains(i) => cfg.humans = *i as usize,
+                    _ => return Err(bad(key, "an integer 0..1000", v)),
+                },
+                "epartners" => match v {
+                    Term::Int(i) if (0..=1000).contains(i) => cfg.epartners = *i as usize,
                     _ => return Err(bad(key, "an integer 0..1000", v)),
                 },
                 "gripperCapacity" => match v {
@@ -301,6 +334,15 @@ impl Bw4t {
         s.ticks = self.world.tick;
         s.sequence_index = self.world.sequence_index;
         s.robots = self.world.robots.iter().map(|r| r.stats.clone()).collect();
+        s.epartners = self
+            .world
+            .epartners
+            .iter()
+            .map(|e| stats::EPartnerStats {
+                holder: e.holder.map(|r| self.world.robots[r].name.clone()),
+                ..e.stats.clone()
+            })
+            .collect();
         s.teams = teams::team_stats(&self.teams, &s.robots);
         s
     }
@@ -321,18 +363,19 @@ fn team_sizes(v: &Term) -> Option<Vec<usize>> {
 
 impl Environment for Bw4t {
     fn entities(&self) -> Vec<EntityInfo> {
-        self.world
-            .robots
-            .iter()
-            .map(|r| EntityInfo {
-                name: r.name.clone(),
-                kind: "bot".into(),
-            })
-            .collect()
+        let robots = self.world.robots.iter().map(|r| EntityInfo {
+            name: r.name.clone(),
+            kind: if r.human { "human" } else { "bot" }.into(),
+        });
+        let epartners = self.world.epartners.iter().map(|e| EntityInfo {
+            name: e.name.clone(),
+            kind: "epartner".into(),
+        });
+        robots.chain(epartners).collect()
     }
 
     fn declarations(&self) -> Vec<PerceptDecl> {
-        let mut d = percepts::declarations();
+        let mut d = percepts::all_declarations();
         if self.navpoints {
             d.push(PerceptDecl::new(
                 "navpoint",
@@ -344,14 +387,18 @@ impl Environment for Bw4t {
     }
 
     fn perform(&mut self, entity: &str, action: &Term) -> ActionResult {
-        match self.world.robot_index(entity) {
-            Some(r) => self.world.perform(r, action),
+        if let Some(r) = self.world.robot_index(entity) {
+            return self.world.perform(r, action);
+        }
+        match self.world.epartner_index(entity) {
+            Some(e) => self.world.perform_epartner(e, action),
             None => ActionResult::fail(format!("unknown entity `{entity}`")),
         }
     }
 
     fn tick(&mut self) {
         self.world.step_robots();
+        self.world.carry_epartners();
         self.world.tick += 1;
     }
 
@@ -360,14 +407,15 @@ impl Environment for Bw4t {
     }
 
     fn percepts(&mut self, entity: &str) -> Vec<Term> {
-        match self.world.robot_index(entity) {
-            Some(r) => {
-                let mut batch = self.world.percept_batch(r, self.positions);
-                if self.navpoints {
-                    percepts::add_navpoints(&mut batch);
-                }
-                batch
+        if let Some(r) = self.world.robot_index(entity) {
+            let mut batch = self.world.percept_batch(r, self.positions);
+            if self.navpoints {
+                percepts::add_navpoints(&mut batch);
             }
+            return batch;
+        }
+        match self.world.epartner_index(entity) {
+            Some(e) => self.world.epartner_batch(e),
             None => Vec::new(),
         }
     }
@@ -386,6 +434,23 @@ impl Environment for Bw4t {
 
     fn scene(&mut self) -> Option<serde_json::Value> {
         Some(scene::scene(&self.world, &mut self.headings))
+    }
+
+    fn input(&mut self, entity: &str, request: &Term) -> Result<(), String> {
+        match self.world.robot_index(entity) {
+            Some(r) => self.world.request(r, request),
+            None => {
+                let humans = self.world.human_names();
+                Err(if humans.is_empty() {
+                    format!("unknown entity `{entity}`; this run has no human-controlled robots")
+                } else {
+                    format!(
+                        "unknown entity `{entity}`; the human-controlled robots are {}",
+                        humans.join(", ")
+                    )
+                })
+            }
+        }
     }
 }
 

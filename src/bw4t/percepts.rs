@@ -35,8 +35,29 @@ pub fn declarations() -> Vec<PerceptDecl> {
         d("player", 1, OnChangeWithNegation),
         d("bumped", 1, OnChangeWithNegation),
         d("color", 2, Always),
+        d("epartner", 4, Always),
         d("message", 2, Always),
     ]
+}
+
+/// The percept declarations of a robot: human-controlled ones also get the requests.
+pub fn robot_declarations(human: bool) -> Vec<PerceptDecl> {
+    let mut d = declarations();
+    if human {
+        d.extend(super::human::declarations());
+    }
+    d
+}
+
+/// Every percept any BW4T entity (robot, human, e-partner) gets, each name/arity once.
+pub fn all_declarations() -> Vec<PerceptDecl> {
+    let mut all = robot_declarations(true);
+    for d in super::epartner::declarations() {
+        if !all.iter().any(|a| a.name == d.name && a.arity == d.arity) {
+            all.push(d);
+        }
+    }
+    all
 }
 
 /// Percept names and constant atoms, interned once (interning takes a lock).
@@ -335,6 +356,7 @@ impl World {
             Vec::new()
         });
         g.push(colours);
+        g.push(self.visible_epartners(r));
         let inbox = std::mem::take(&mut self.robots[r].inbox);
         g.push(
             inbox
@@ -348,7 +370,10 @@ impl World {
     /// The next percept batch of robot `r` (see [`crate::env::PerceptFilter`]).
     pub fn percept_batch(&mut self, r: usize, positions: bool) -> Vec<Term> {
         let first = self.robots[r].filter.is_first();
-        let groups = self.current_percepts(r, first, positions);
+        let mut groups = self.current_percepts(r, first, positions);
+        if self.robots[r].human {
+            groups.extend(self.request_groups(r));
+        }
         self.robots[r].filter.batch_grouped(groups)
     }
 }

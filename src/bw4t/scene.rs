@@ -85,14 +85,18 @@ impl Headings {
     }
 }
 
-/// The moving parts now: `robots` (position, heading, held block ids, remaining path, state,
-/// battery percent when batteries are on), free and held `blocks` (colour, position, holder),
-/// `occupied` rooms and the `sequence_index` (colours delivered).
+/// The moving parts now: `robots` (`kind` `robot` or `human`, position, heading, held block
+/// ids, remaining path, state, battery percent when batteries are on, the `epartner` a human
+/// carries), free and held `blocks` (colour, position, holder), `occupied` rooms, the
+/// `sequence_index` (colours delivered) and, when the map has any, the `epartners`.
 pub fn scene(w: &World, headings: &mut Headings) -> Value {
     let mut robots = Map::new();
     for (i, r) in w.robots.iter().enumerate() {
         let mut o = Map::new();
-        o.insert("kind".into(), json!("robot"));
+        o.insert(
+            "kind".into(),
+            json!(if r.human { "human" } else { "robot" }),
+        );
         o.insert("pos".into(), point(&r.pos));
         o.insert(
             "heading".into(),
@@ -107,6 +111,9 @@ pub fn scene(w: &World, headings: &mut Headings) -> Value {
         o.insert("state".into(), json!(r.state().name()));
         if r.config.battery.is_some() {
             o.insert("battery".into(), json!(round(r.battery_percent())));
+        }
+        if let Some(e) = r.epartner {
+            o.insert("epartner".into(), json!(w.epartners[e].name));
         }
         robots.insert(r.name.clone(), Value::Object(o));
     }
@@ -130,10 +137,33 @@ pub fn scene(w: &World, headings: &mut Headings) -> Value {
         .map(|(_, zone)| zone.name.as_str())
         .collect();
     occupied.sort_unstable();
-    json!({
+    let mut scene = json!({
         "robots": robots,
         "blocks": blocks,
         "occupied": occupied,
         "sequence_index": w.sequence_index,
-    })
+    });
+    if !w.epartners.is_empty() {
+        scene["epartners"] = epartners(w);
+    }
+    scene
+}
+
+/// The e-partners keyed by name: `kind` `epartner`, position, holder (a robot name or null)
+/// and functionalities.
+fn epartners(w: &World) -> Value {
+    let mut out = Map::new();
+    for e in &w.epartners {
+        let holder = e.holder.map(|r| w.robots[r].name.clone());
+        out.insert(
+            e.name.clone(),
+            json!({
+                "kind": "epartner",
+                "pos": point(&e.pos),
+                "holder": holder,
+                "functionalities": e.functionalities.iter().map(|f| f.name()).collect::<Vec<_>>(),
+            }),
+        );
+    }
+    Value::Object(out)
 }

@@ -6,6 +6,9 @@ use serde::Serialize;
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct RobotStats {
     pub name: String,
+    /// Controlled by a person (entity type `human`).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub human: bool,
     /// Units travelled.
     pub distance: f64,
     /// Times the robot's centre entered a room (including the drop zone).
@@ -48,7 +51,25 @@ pub struct RunStats {
     /// The tick at which the last block of the sequence was delivered.
     pub finished_at_tick: Option<u64>,
     pub robots: Vec<RobotStats>,
+    /// The e-partners, when the map has any.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub epartners: Vec<EPartnerStats>,
     /// Deliveries per team, when the run has teams (init `teams`).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub teams: Vec<super::teams::TeamStats>,
+}
+
+/// Statistics of one e-partner.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct EPartnerStats {
+    pub name: String,
+    /// `GPS`, `Forget-me-not`.
+    pub functionalities: Vec<&'static str>,
+    /// Times a human picked it up.
+    pub picked_up: u64,
+    /// Times a human dropped it.
+    pub dropped: u64,
+    pub messages_sent: u64,
+    /// Who holds it at the end (`None`: lying on the map).
+    pub holder: Option<String>,
 }

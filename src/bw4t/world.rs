@@ -127,8 +127,13 @@ impl RobotState {
 #[derive(Clone, Debug)]
 pub struct Robot {
     pub id: i64,
-    /// Entity name, `Bot1`, `Bot2`, ...
+    /// Entity name, `Bot1`, `Bot2`, ... (`Human1`, ... for human-controlled robots)
     pub name: String,
+    /// Controlled by a person (a HumanBot, entity type `human`): gets the person's requests as
+    /// percepts and can carry an e-partner.
+    pub human: bool,
+    /// The e-partner it carries (index into [`World::epartners`]).
+    pub epartner: Option<usize>,
     pub sym: Sym,
     pub pos: Pos,
     pub config: RobotConfig,
@@ -149,6 +154,8 @@ pub struct Robot {
     pub battery: f64,
     pub stats: RobotStats,
     pub(crate) inbox: VecDeque<(Sym, Term)>,
+    /// A person's requests not yet perceived (humans only), oldest first.
+    pub(crate) requests: VecDeque<Term>,
     pub(crate) filter: PerceptFilter,
     pub(crate) room: Option<usize>,
 }
@@ -186,6 +193,8 @@ pub struct World {
     pub zones: Vec<Zone>,
     pub blocks: Vec<Block>,
     pub robots: Vec<Robot>,
+    /// E-partners (entities of type `epartner`), in id order.
+    pub epartners: Vec<super::epartner::EPartner>,
     pub drop_zone: usize,
     pub sequence: Vec<Color>,
     pub sequence_index: usize,
@@ -198,6 +207,8 @@ pub struct World {
     pub stats: RunStats,
     /// Spawn points not used yet.
     pub(crate) spawns: VecDeque<Pos>,
+    /// Spawn points for humans not used yet (used before `spawns`).
+    pub(crate) human_spawns: VecDeque<Pos>,
     pub(crate) next_id: i64,
     pub(crate) rng: ChaCha8Rng,
     pub(crate) nav: Nav,
@@ -309,6 +320,7 @@ impl World {
             zones,
             blocks: Vec::new(),
             robots: Vec::new(),
+            epartners: Vec::new(),
             drop_zone,
             sequence,
             sequence_index: 0,
@@ -318,6 +330,11 @@ impl World {
             tick: 0,
             stats: RunStats::default(),
             spawns: map.spawns.iter().map(|s| Pos::new(s[0], s[1])).collect(),
+            human_spawns: map
+                .human_spawns
+                .iter()
+                .map(|s| Pos::new(s[0], s[1]))
+                .collect(),
             next_id,
             rng,
             nav: Nav::default(),
@@ -341,21 +358,49 @@ impl World {
 
     /// Adds a robot at the next spawn point; `Err` when the map has no spawn point left.
     pub fn spawn(&mut self, config: RobotConfig) -> Result<usize, String> {
-        let pos = self.spawns.pop_front().ok_or_else(|| {
-            format!(
-                "map `{}` has no spawn point left for a robot number {}",
-                self.map_name,
-                self.robots.len() + 1
-            )
-        })?;
-        let name = format!("Bot{}", self.robots.len() + 1);
+        self.spawn_player(config, false)
+    }
+
+    /// Adds a human-controlled robot (`Human1`, ...) at the next human spawn point, else at the
+    /// next spawn point; `Err` when there is none left.
+    pub fn spawn_human(&mut self, config: RobotConfig) -> Result<usize, String> {
+        self.spawn_player(config, true)
+    }
+
+    fn spawn_player(&mut self, config: RobotConfig, human: bool) -> Result<usize, String> {
+        let (prefix, kind) = if human {
+            ("Human", "human-controlled robot")
+        } else {
+            ("Bot", "robot")
+        };
+        let number = self.robots.iter().filter(|r| r.human == human).count() + 1;
+        let from_human = if human {
+            self.human_spawns.pop_front()
+        } else {
+            None
+        };
+        let pos = from_human
+            .or_else(|| self.spawns.pop_front())
+            .ok_or_else(|| {
+                format!(
+                    "map `{}` has no spawn point left for {kind} number {number}",
+                    self.map_name
+                )
+            })?;
+        let name = format!("{prefix}{number}");
         let idx = self.robots.len();
         let room = self.zone_at(&pos).filter(|&z| self.zones[z].is_room());
+        let decls = super::percepts::robot_declarations(human);
         self.robots.push(Robot {
             id: self.next_id,
             sym: Sym::intern(&name),
-            stats: RobotStats::new(&name),
+            stats: RobotStats {
+                human,
+                ..RobotStats::new(&name)
+            },
             name,
+            human,
+            epartner: None,
             pos,
             battery: config.battery.unwrap_or(0.0),
             config,
@@ -367,7 +412,8 @@ impl World {
             interrupted: Vec::new(),
             target_unreachable: false,
             inbox: VecDeque::new(),
-            filter: PerceptFilter::new(&super::percepts::declarations()),
+            requests: VecDeque::new(),
+            filter: PerceptFilter::new(&decls),
             room,
         });
         self.next_id += 1;

@@ -1,6 +1,8 @@
 //! Importer for BW4T XML map files (root element `<newMap>`, the JAXB schema of BW4T 3).
 
-use super::map::{self, DoorSpec, Map, Orientation, SpanStyle, ZoneKind, ZoneSpec};
+use super::map::{
+    self, DoorSpec, EPartnerSpec, Functionality, Map, Orientation, SpanStyle, ZoneKind, ZoneSpec,
+};
 use crate::diag::Diagnostic;
 use serde::de::IgnoredAny;
 use serde::Deserialize;
@@ -33,6 +35,53 @@ struct Xy {
 #[derive(Deserialize)]
 struct XEntity {
     position: Xy,
+    /// `NORMAL` (a robot spawn point, also when absent) or `EPARTNER` (an e-partner).
+    #[serde(rename = "type", default)]
+    kind: Option<String>,
+    /// An e-partner's functionalities (`GPS`, `Forget-me-not`); both when none are listed.
+    #[serde(rename = "functionality", default)]
+    functionalities: Vec<String>,
+}
+
+impl XEntity {
+    fn is_epartner(&self) -> bool {
+        self.kind
+            .as_deref()
+            .is_some_and(|k| k.trim().eq_ignore_ascii_case("EPARTNER"))
+    }
+}
+
+/// An `EPARTNER` entity as a map e-partner; unknown functionality names are errors.
+fn epartner(e: &XEntity, file: &str, source: &str) -> Result<EPartnerSpec, Diagnostic> {
+    let mut functionalities = Vec::new();
+    for f in &e.functionalities {
+        let squashed: String = f
+            .chars()
+            .filter(|c| c.is_ascii_alphanumeric())
+            .map(|c| c.to_ascii_lowercase())
+            .collect();
+        match squashed.as_str() {
+            "gps" => functionalities.push(Functionality::Gps),
+            "forgetmenot" => functionalities.push(Functionality::ForgetMeNot),
+            _ => {
+                return Err(Diagnostic::error(
+                    "M0012",
+                    format!("an e-partner has unknown functionality `{}`", f.trim()),
+                    file,
+                    map::zone_span(source, "@epartners", SpanStyle::Xml),
+                )
+                .with_hint("the functionalities are GPS and Forget-me-not"))
+            }
+        }
+    }
+    if functionalities.is_empty() {
+        functionalities = Functionality::all();
+    }
+    Ok(EPartnerSpec {
+        x: e.position.x,
+        y: e.position.y,
+        functionalities,
+    })
 }
 
 #[derive(Deserialize)]
@@ -130,6 +179,13 @@ pub fn import(source: &str, file: &str) -> Result<Map, Vec<Diagnostic>> {
             blocks: z.blocks.iter().map(|b| colour_name(b)).collect(),
         });
     }
+    let mut epartners = Vec::new();
+    for e in raw.entities.iter().filter(|e| e.is_epartner()) {
+        match epartner(e, file, source) {
+            Ok(spec) => epartners.push(spec),
+            Err(d) => errs.push(d),
+        }
+    }
     let (width, height) = raw.area.map_or((0.0, 0.0), |a| (a.x, a.y));
     let name = std::path::Path::new(file)
         .file_stem()
@@ -148,8 +204,11 @@ pub fn import(source: &str, file: &str) -> Result<Map, Vec<Diagnostic>> {
         spawns: raw
             .entities
             .iter()
+            .filter(|e| !e.is_epartner())
             .map(|e| [e.position.x, e.position.y])
             .collect(),
+        human_spawns: Vec::new(),
+        epartners,
         zones,
     };
     errs.extend(map::check(&result, file, source, SpanStyle::Xml));

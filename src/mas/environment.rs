@@ -60,7 +60,7 @@ impl Builtin {
     /// The percepts its entities can receive, as `(name, arity)`.
     pub fn percepts(self) -> Vec<(String, usize)> {
         match self {
-            Builtin::Bw4t => crate::bw4t::percepts::declarations()
+            Builtin::Bw4t => crate::bw4t::percepts::all_declarations()
                 .into_iter()
                 .map(|d| (d.name, d.arity))
                 .chain([("navpoint".to_string(), 5)])
