@@ -192,13 +192,7 @@ impl Observer for Console {
             .map(|c| c.players().drain())
             .unwrap_or_default()
     }
-    fn input_applied(
-        &mut self,
-        round: u64,
-        tick: u64,
-        input: &Input,
-        result: &Result<(), String>,
-    ) {
+    fn input_applied(&mut self, round: u64, tick: u64, input: &Input, result: &Result<(), String>) {
         if let Some(c) = &self.control {
             c.players().applied(tick, result);
         }
@@ -431,8 +425,7 @@ pub fn main(mut args: Args) -> ExitCode {
     }
     let stop = Arc::new(AtomicUsize::new(0));
     let opts = options(&args, &sys, &stop);
-    if sys.env.is_none() && (args.map.is_some() || args.robots.is_some() || args.humans.is_some())
-    {
+    if sys.env.is_none() && (args.map.is_some() || args.robots.is_some() || args.humans.is_some()) {
         eprintln!("warning: --map, --robots and --humans need an environment; ignored");
     }
     let inputs = InputLog::new();

@@ -271,7 +271,7 @@ pub fn env_params(
         p.insert("robots".into(), Term::Int(r as i64));
     }
     if let Some(h) = opts.humans {
-        p.insert("humancount".into(), Term::Int(h as i64));
+        p.insert("humans".into(), Term::Int(h as i64));
     }
     let map = p
         .get("map")

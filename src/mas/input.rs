@@ -154,7 +154,8 @@ mod tests {
         assert!(log
             .add_record(&serde_json::json!({"type": "input"}))
             .is_err());
-        log.add_record(&serde_json::json!({"type": "cycle"})).unwrap();
+        log.add_record(&serde_json::json!({"type": "cycle"}))
+            .unwrap();
         assert_eq!(log.len(), 4);
     }
 }

@@ -69,21 +69,31 @@ pub fn handle(request: &mut Request, site: &Site, path: &str, token: Option<&str
     match (get, path) {
         (true, "/api/play") => (200, players.state(token)),
         (false, "/api/play/take") => take(request, players),
-        (false, "/api/play/leave") => match body(request).and_then(|o| Ok(text(&o, "token")?.to_string())) {
-            Ok(t) => {
-                players.leave(&t);
-                (200, players.state(None))
+        (false, "/api/play/leave") => {
+            match body(request).and_then(|o| Ok(text(&o, "token")?.to_string())) {
+                Ok(t) => {
+                    players.leave(&t);
+                    (200, players.state(None))
+                }
+                Err(a) => a,
             }
-            Err(a) => a,
-        },
+        }
         (false, "/api/play/request") => {
             if control.ended() {
-                return (409, json!({"error": "the run is over: requests are no longer taken"}));
+                return (
+                    409,
+                    json!({"error": "the run is over: requests are no longer taken"}),
+                );
             }
             submit(request, players)
         }
         (_, p) => {
-            let known = ["/api/play", "/api/play/take", "/api/play/leave", "/api/play/request"];
+            let known = [
+                "/api/play",
+                "/api/play/take",
+                "/api/play/leave",
+                "/api/play/request",
+            ];
             let status = if known.contains(&p) { 405 } else { 404 };
             (
                 status,

@@ -101,7 +101,11 @@ pub struct Players {
 
 /// A token nobody can guess from another one.
 fn new_token() -> String {
-    format!("{:016x}{:016x}", rand::random::<u64>(), rand::random::<u64>())
+    format!(
+        "{:016x}{:016x}",
+        rand::random::<u64>(),
+        rand::random::<u64>()
+    )
 }
 
 impl Players {
@@ -130,7 +134,11 @@ impl Players {
 
     /// The run's HumanBots.
     pub fn robots(&self) -> Vec<String> {
-        self.lock().robots.iter().map(|r| r.entity.clone()).collect()
+        self.lock()
+            .robots
+            .iter()
+            .map(|r| r.entity.clone())
+            .collect()
     }
 
     /// The browser with `token` (a new one when `None`) takes `robot`, leaving the robot it
@@ -300,7 +308,11 @@ mod tests {
     fn one_robot_per_browser_and_a_taken_robot_stays_taken() {
         let p = players();
         let a = p.take("Human1", None).unwrap();
-        assert_eq!(p.take("Human1", Some(&a)).unwrap(), a, "taking it again is fine");
+        assert_eq!(
+            p.take("Human1", Some(&a)).unwrap(),
+            a,
+            "taking it again is fine"
+        );
         let e = p.take("Human1", None).unwrap_err();
         assert_eq!(e.status, 409, "{e:?}");
         let e = p.take("Bot1", None).unwrap_err();

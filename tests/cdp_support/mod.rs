@@ -142,7 +142,10 @@ impl Browser {
     /// Opens `url` in a new tab.
     pub fn open(&mut self, url: &str) -> Tab<'_> {
         let target = self.call(None, "Target.createTarget", json!({"url": "about:blank"}));
-        let id = target["targetId"].as_str().expect("a target id").to_string();
+        let id = target["targetId"]
+            .as_str()
+            .expect("a target id")
+            .to_string();
         let attached = self.call(
             None,
             "Target.attachToTarget",
@@ -187,11 +190,19 @@ impl Tab<'_> {
         r["result"]["value"].clone()
     }
 
+    /// True when `js` is true in the page now; false while it throws (e.g. before the page
+    /// has loaded).
+    pub fn holds(&mut self, js: &str) -> bool {
+        self.eval(&format!(
+            "(() => {{ try {{ return !!({js}); }} catch (e) {{ return false; }} }})()"
+        )) == json!(true)
+    }
+
     /// Waits until `js` is true in the page (panics with `what` after `limit`).
     pub fn wait_for(&mut self, js: &str, what: &str, limit: Duration) {
         let end = Instant::now() + limit;
         loop {
-            if self.eval(&format!("!!({js})")) == json!(true) {
+            if self.holds(js) {
                 return;
             }
             if Instant::now() > end {
@@ -222,15 +233,22 @@ impl Tab<'_> {
 
     /// Clicks the element `selector` with the (virtual) mouse, as a person would.
     pub fn click(&mut self, selector: &str) {
-        let (x, y) = self
-            .point_of(selector)
-            .unwrap_or_else(|| panic!("nothing to click at {selector}"));
+        assert!(self.try_click(selector), "nothing to click at {selector}");
+    }
+
+    /// Clicks the element `selector` if it can be clicked now (false: it is missing, or
+    /// something is drawn over all of it).
+    pub fn try_click(&mut self, selector: &str) -> bool {
+        let Some((x, y)) = self.point_of(selector) else {
+            return false;
+        };
         for kind in ["mouseMoved", "mousePressed", "mouseReleased"] {
             self.call(
                 "Input.dispatchMouseEvent",
                 json!({"type": kind, "x": x, "y": y, "button": "left", "clickCount": 1}),
             );
         }
+        true
     }
 
     /// Chooses `value` in the `<select>` `selector` (a real choice: the change event fires).

@@ -85,11 +85,20 @@ function send(request) {
   });
 }
 
+// What a click on the map means: the topmost free block or zone under the pointer (a robot
+// drawn over a room or a block does not stand in the way).
+function mapTarget(e) {
+  const under = document.elementsFromPoint ? document.elementsFromPoint(e.clientX, e.clientY) : [e.target];
+  return under.find((t) => t.classList && ((t.classList.contains('block') && !t.classList.contains('held'))
+    || (t.classList.contains('zone') && t.dataset.name)));
+}
+
 // Clicks on the map: a zone (room, drop zone, corridor) is goTo, a free block goToBlock.
 function onMapClick(e) {
   if (!play.mine || view.info.mode !== 'live') return;
-  const t = e.target;
-  if (t.classList.contains('block') && !t.classList.contains('held')) {
+  const t = mapTarget(e);
+  if (!t) return;
+  if (t.classList.contains('block')) {
     play.block = t.dataset.id;
     drawPlayer();
     send('goToBlock(' + Number(t.dataset.id) + ')');

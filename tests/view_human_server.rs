@@ -65,11 +65,22 @@ fn announced(url: &str) -> Value {
 #[test]
 fn bad_player_requests_get_clear_errors_and_the_run_goes_on() {
     let mut cmd = goal();
-    cmd.args(["run", "--robots", "2", "--humans", "1", "--max-ticks", "200000"]);
+    cmd.args([
+        "run",
+        "--robots",
+        "2",
+        "--humans",
+        "1",
+        "--max-ticks",
+        "200000",
+    ]);
     let served = Served::start(cmd);
     let url = served.url.clone();
     let state = announced(&url);
-    assert_eq!(state["robots"], json!([{"entity": "Human1", "taken": false, "mine": false}]));
+    assert_eq!(
+        state["robots"],
+        json!([{"entity": "Human1", "taken": false, "mine": false}])
+    );
 
     // An unknown robot: 404, naming the run's HumanBots.
     let a = post(&url, "/api/play/take", json!({"robot": "Bot1"}));
