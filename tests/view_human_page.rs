@@ -3,7 +3,8 @@
 //! robot (another browser then sees it taken), click a room, a block, pick it up and put it
 //! down, click the drop zone, and send a message from the BW4T list; the team completes the
 //! game. The trace shows the HumanBot's requests, percepts and actions, and `goal why` reruns
-//! the game with the recorded requests and finds the same cycles.
+//! the game with the recorded requests and finds the same cycles. The page shows humans,
+//! e-partners and who holds which, in the live run and in the replay of its trace.
 
 mod cdp_support;
 mod view_support;
@@ -304,4 +305,94 @@ fn a_person_plays_a_humanbot_while_two_agents_play_and_the_team_completes_the_ga
     assert!(out.contains("FIRED"), "{out}");
     assert!(out.contains("pickUp"), "the rule that picked up: {out}");
     assert!(!err.contains("other rules"), "{err}");
+}
+
+/// The people list's entry for `name`, as the page shows it.
+fn person(tab: &mut Tab, name: &str) -> String {
+    tab.eval(&format!(
+        "(document.querySelector('#people li[data-name=\"{name}\"]') || {{}}).textContent || ''"
+    ))
+    .as_str()
+    .unwrap_or("")
+    .to_string()
+}
+
+#[test]
+fn the_page_shows_who_holds_which_e_partner_live_and_in_the_replay() {
+    let Some(chromium) = browser() else { return };
+    let dir = scratch("play-epartner");
+    let trace = dir.join("game.jsonl");
+    let mas = concat!(env!("CARGO_MANIFEST_DIR"), "/agents/bw4t/humans.mas2g");
+    let mut cmd = goal();
+    cmd.args(["run", mas, "--view", "127.0.0.1:0", "--max-ticks", "3000"])
+        .arg("--trace")
+        .arg(&trace);
+    let mut served = Served::start(cmd);
+    let url = served.url.clone();
+
+    let mut person_browser = Browser::launch(&chromium, &dir.join("person"));
+    let mut tab = person_browser.open(&url);
+    tab.wait_for(
+        "document.querySelector('#humans button[data-entity=\"Human1\"]') \
+         && document.querySelector('#people li[data-name=\"EPartner1\"]')",
+        "the player panel and the e-partner",
+        MINUTE,
+    );
+    assert!(person(&mut tab, "EPartner1").contains("lying free"));
+    assert!(person(&mut tab, "EPartner1").contains("GPS"));
+    assert!(person(&mut tab, "Human1").contains("human"));
+    tab.click("#humans button[data-entity=\"Human1\"]");
+    tab.wait_for(
+        "document.querySelector('#humans li.mine[data-entity=\"Human1\"]')",
+        "Human1 taken",
+        MINUTE,
+    );
+    tab.click("#eppick");
+    assert!(applied(&mut tab, "pickUpEPartner"));
+    tab.wait_for(
+        "document.querySelector('#people li[data-name=\"EPartner1\"][data-holder=\"Human1\"]')",
+        "EPartner1 held by Human1",
+        MINUTE,
+    );
+    assert!(person(&mut tab, "EPartner1").contains("held by Human1"));
+    assert!(person(&mut tab, "Human1").contains("carries e-partner EPartner1"));
+    assert!(tab
+        .holds("document.querySelector('#dynamic circle.epartner-mark[data-name=\"EPartner1\"]')"));
+    drop(tab);
+    drop(person_browser);
+    let (status, _) = http("POST", &url, "/api/control?speed=100000");
+    assert_eq!(status, 200);
+    served.wait_line(|l| l.contains("the run is over"), 10 * MINUTE);
+    drop(served);
+
+    let recs = records(&trace);
+    assert!(
+        recs.iter().any(|r| r["type"] == "action"
+            && r["agent"] == "Human1"
+            && r["action"] == "pickUpEPartner"
+            && r["result"] == "ok"),
+        "Human1 picked the e-partner up"
+    );
+
+    // The trace replays: at its end the page shows the same holder and the request taken.
+    let mut cmd = goal();
+    cmd.arg("view").arg(&trace);
+    let replay = Served::start(cmd);
+    let mut viewer = Browser::launch(&chromium, &dir.join("viewer"));
+    let mut tab = viewer.open(&format!("{}?tick=1000000", replay.url));
+    tab.wait_for(
+        "document.querySelector('#people li[data-name=\"EPartner1\"][data-holder=\"Human1\"]')",
+        "EPartner1 held by Human1 in the replay",
+        MINUTE,
+    );
+    assert!(person(&mut tab, "Human1").contains("carries e-partner EPartner1"));
+    tab.wait_for(
+        "Array.from(document.querySelectorAll('#inputs li')).some((l) => l.textContent.includes('Human1: pickUpEPartner'))",
+        "the request in the replay's list",
+        MINUTE,
+    );
+    assert!(
+        tab.holds("document.querySelector('#playlive').hidden"),
+        "nobody plays a replay"
+    );
 }

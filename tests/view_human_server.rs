@@ -1,7 +1,8 @@
 //! The player endpoints of the view server: bad requests (an unknown robot, a robot someone
 //! else plays, malformed bodies, requests without a robot, requests in a replay) each get a
 //! clear error, nothing crashes, and the run goes on; a request the environment refuses is
-//! shown as refused with its reason.
+//! shown as refused with its reason. Two people play a robot each; with nobody playing, a
+//! HumanBot stands still and the run does not wait for anyone.
 
 mod view_support;
 
@@ -189,4 +190,172 @@ fn nobody_plays_a_replay() {
         .iter()
         .any(|x| x["pattern"] == "imp(in(Me,Place))"));
     assert_eq!(m["colors"].as_array().unwrap().len(), 9);
+}
+
+#[test]
+fn a_humanbot_nobody_plays_stands_still_and_the_run_waits_for_nobody() {
+    let dir = scratch("play-nobody");
+    let trace = dir.join("t.jsonl");
+    let mut cmd = goal();
+    cmd.args([
+        "run",
+        "--robots",
+        "2",
+        "--humans",
+        "1",
+        "--max-ticks",
+        "300",
+    ])
+    .arg("--trace")
+    .arg(&trace);
+    let mut served = Served::start(cmd);
+    // Nobody opens the page: the run plays to its tick limit all the same.
+    served.wait_line(|l| l.contains("the run is over"), Duration::from_secs(300));
+    assert_eq!(served.interrupt(), Some(3), "the tick limit ended the run");
+    let recs: Vec<Value> = std::fs::read_to_string(&trace)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert!(
+        recs.iter().any(|r| r["tick"] == 300),
+        "the run reached tick 300"
+    );
+    assert!(
+        recs.iter().all(|r| r["type"] != "input"),
+        "no request taken"
+    );
+    let human_actions: Vec<&Value> = recs
+        .iter()
+        .filter(|r| r["type"] == "action" && r["agent"] == "Human1")
+        .collect();
+    assert!(human_actions.is_empty(), "{human_actions:?}");
+    // Human1 is where it started; the agents' robots moved.
+    let moves = |robot: &str| {
+        let key = format!("robots/{robot}/pos");
+        recs.iter()
+            .filter(|r| r["type"] == "world")
+            .filter(|r| !r["set"][&key].is_null())
+            .count()
+    };
+    assert_eq!(moves("Human1"), 1, "placed once, never moved");
+    assert!(moves("Bot1") > 1 && moves("Bot2") > 1);
+}
+
+/// Waits until the request with id `id` of the player `token` is answered: its state.
+fn answered(url: &str, token: &str, id: &Value) -> Value {
+    let end = Instant::now() + Duration::from_secs(60);
+    loop {
+        let s = json(url, &format!("/api/play?token={token}"));
+        let r = s["requests"]
+            .as_array()
+            .and_then(|rs| rs.iter().find(|r| r["id"] == *id).cloned());
+        if let Some(r) = r.filter(|r| r["state"] != "waiting") {
+            return r;
+        }
+        assert!(Instant::now() < end, "request {id} never answered: {s}");
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
+
+#[test]
+fn two_people_play_a_robot_each() {
+    let dir = scratch("play-two");
+    let trace = dir.join("t.jsonl");
+    let mut cmd = goal();
+    cmd.args([
+        "run",
+        "--robots",
+        "1",
+        "--humans",
+        "2",
+        "--max-ticks",
+        "200000",
+    ])
+    .arg("--trace")
+    .arg(&trace);
+    let served = Served::start(cmd);
+    let url = served.url.clone();
+    announced(&url);
+    let a = post(&url, "/api/play/take", json!({"robot": "Human1"}));
+    let b = post(&url, "/api/play/take", json!({"robot": "Human2"}));
+    assert_eq!((a.0, b.0), (200, 200), "{a:?} {b:?}");
+    let (ta, tb) = (
+        a.1["token"].as_str().unwrap(),
+        b.1["token"].as_str().unwrap(),
+    );
+    assert_ne!(ta, tb);
+    // Each sees their own robot, and the other's as taken.
+    let sa = json(&url, &format!("/api/play?token={ta}"));
+    assert_eq!(sa["you"], "Human1");
+    assert_eq!(
+        sa["robots"][1],
+        json!({"entity": "Human2", "taken": true, "mine": false})
+    );
+    let sb = json(&url, &format!("/api/play?token={tb}"));
+    assert_eq!(sb["you"], "Human2");
+    let ra = post(
+        &url,
+        "/api/play/request",
+        json!({"token": ta, "request": "goTo('RoomA1')"}),
+    );
+    let rb = post(
+        &url,
+        "/api/play/request",
+        json!({"token": tb, "request": "goTo('RoomC3')"}),
+    );
+    assert_eq!((ra.0, rb.0), (202, 202), "{ra:?} {rb:?}");
+    let (xa, xb) = (
+        answered(&url, ta, &ra.1["id"]),
+        answered(&url, tb, &rb.1["id"]),
+    );
+    assert_eq!(
+        (&xa["state"], &xb["state"]),
+        (&json!("applied"), &json!("applied"))
+    );
+    // The agents act on them in the rounds after.
+    let then = xa["tick"]
+        .as_u64()
+        .unwrap()
+        .max(xb["tick"].as_u64().unwrap());
+    let end = Instant::now() + Duration::from_secs(60);
+    while tick(&url) < then + 5 {
+        assert!(
+            Instant::now() < end,
+            "the run stopped before tick {}",
+            then + 5
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    // Each page lists only its own robot's requests.
+    let sa = json(&url, &format!("/api/play?token={ta}"));
+    let mine: Vec<&str> = sa["requests"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["request"].as_str().unwrap())
+        .collect();
+    assert_eq!(mine, ["goTo('RoomA1')"]);
+    assert_eq!(served.interrupt(), Some(130));
+
+    // The trace has each request for its own robot, and each robot's agent acted on it.
+    let recs: Vec<Value> = std::fs::read_to_string(&trace)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    for (robot, goal) in [("Human1", "goTo('RoomA1')"), ("Human2", "goTo('RoomC3')")] {
+        assert!(
+            recs.iter().any(|r| r["type"] == "input"
+                && r["entity"] == robot
+                && r["request"] == goal
+                && r["result"] == "ok"),
+            "{robot}'s request in the trace"
+        );
+        assert!(
+            recs.iter()
+                .any(|r| r["type"] == "action" && r["agent"] == robot && r["action"] == goal),
+            "{robot} went"
+        );
+    }
 }
