@@ -43,6 +43,15 @@ fn error_of(answer: &(u16, Value)) -> String {
     answer.1["error"].as_str().unwrap_or_default().to_string()
 }
 
+/// The records of the trace `path`.
+fn records(path: &std::path::Path) -> Vec<Value> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
 /// The live run's tick as its page sees it.
 fn tick(url: &str) -> u64 {
     json(url, "/api/info")["control"]["tick"]
@@ -212,11 +221,7 @@ fn a_humanbot_nobody_plays_stands_still_and_the_run_waits_for_nobody() {
     // Nobody opens the page: the run plays to its tick limit all the same.
     served.wait_line(|l| l.contains("the run is over"), Duration::from_secs(300));
     assert_eq!(served.interrupt(), Some(3), "the tick limit ended the run");
-    let recs: Vec<Value> = std::fs::read_to_string(&trace)
-        .unwrap()
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let recs = records(&trace);
     assert!(
         recs.iter().any(|r| r["tick"] == 300),
         "the run reached tick 300"
@@ -339,11 +344,7 @@ fn two_people_play_a_robot_each() {
     assert_eq!(served.interrupt(), Some(130));
 
     // The trace has each request for its own robot, and each robot's agent acted on it.
-    let recs: Vec<Value> = std::fs::read_to_string(&trace)
-        .unwrap()
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let recs = records(&trace);
     for (robot, goal) in [("Human1", "goTo('RoomA1')"), ("Human2", "goTo('RoomC3')")] {
         assert!(
             recs.iter().any(|r| r["type"] == "input"

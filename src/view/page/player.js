@@ -162,7 +162,7 @@ function loadVocabulary() {
     // list offers the messages that name everything.
     for (const m of v.messages) {
       if (m.pattern.includes('_')) continue;
-      sel.appendChild(pel('option', { value: m.pattern, title: m.act }, m.sentence.replace(/[{}]/g, '')));
+      sel.appendChild(pel('option', { value: m.pattern, title: m.act }, m.sentence.replace(/\{([A-Za-z]+)\}/g, (_, slot) => '[' + slot.toLowerCase() + ']')));
     }
     drawMessageSlots();
   });
