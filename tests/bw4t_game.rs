@@ -194,6 +194,8 @@ fn odd_actions_and_unchecked_maps_never_panic() {
         seed: None,
         sequence: vec!["Red".into()],
         spawns: vec![[1.0, 1.0]],
+        human_spawns: Vec::new(),
+        epartners: Vec::new(),
         zones: Vec::new(),
     };
     assert!(map::from_toml(&map::to_toml(&empty), "empty.toml").is_err());

@@ -68,6 +68,8 @@ fn grid() -> Bw4t {
         seed: None,
         sequence: Vec::new(),
         spawns: vec![[5.0, 5.0]],
+        human_spawns: Vec::new(),
+        epartners: Vec::new(),
         zones,
     };
     let text = goal::bw4t::map::to_toml(&m);

@@ -83,13 +83,17 @@ impl RunOptions {
     /// The options that change what happens in a run besides its system, seed and map, as the
     /// trace header records them (`options`), so that `goal why` can rerun it exactly.
     pub fn replay_json(&self) -> serde_json::Value {
-        serde_json::json!({
+        let mut v = serde_json::json!({
             "robots": self.robots,
-            "humans": self.humans,
             "max_beliefs": self.max_beliefs,
             "max_mailbox": self.max_mailbox,
             "max_sent": self.max_sent,
-        })
+        });
+        // Only runs with `--humans` say so: the headers of all other runs stay as they were.
+        if let Some(h) = self.humans {
+            v["humans"] = h.into();
+        }
+        v
     }
 
     /// These options with those of a trace header's `options` (missing fields keep their
@@ -113,5 +117,24 @@ impl RunOptions {
             self.max_sent = size(n);
         }
         self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_rerun_gets_the_humans_of_the_run_and_other_headers_stay_as_they_were() {
+        let plain = RunOptions::default().replay_json();
+        assert!(plain.get("humans").is_none(), "{plain}");
+        let run = RunOptions {
+            humans: Some(2),
+            robots: Some(1),
+            ..RunOptions::default()
+        };
+        let rerun = RunOptions::default().with_replay(&run.replay_json());
+        assert_eq!((rerun.humans, rerun.robots), (Some(2), Some(1)));
+        assert_eq!(RunOptions::default().with_replay(&plain).humans, None);
     }
 }
