@@ -1,10 +1,11 @@
 //! `docs/bw4t.md` lists exactly the actions BW4T robots understand and exactly the percepts they
-//! get, each percept with the sending type the environment declares, so the reference cannot
-//! drift from the environment.
+//! get, each percept with the sending type the environment declares (and so for the requests of
+//! human-controlled robots and the percepts of e-partners), so the reference cannot drift from
+//! the environment.
 
 use goal::bw4t::actions::ACTIONS;
 use goal::bw4t::percepts::declarations;
-use goal::env::PerceptType;
+use goal::env::{PerceptDecl, PerceptType};
 use std::collections::BTreeSet;
 
 fn page() -> String {
@@ -55,7 +56,12 @@ fn every_percept_is_documented_with_its_sending_type() {
         .into_iter()
         .map(|(p, rest)| (p, rest.split(" | ").next().unwrap_or("").to_string()))
         .collect();
-    let actual: BTreeSet<(String, String)> = declarations()
+    assert_eq!(documented, typed(declarations()));
+}
+
+/// `(name/arity, sending type as the page writes it)` of each declaration.
+fn typed(decls: Vec<PerceptDecl>) -> BTreeSet<(String, String)> {
+    decls
         .into_iter()
         .map(|d| {
             let kind = match d.kind {
@@ -66,6 +72,25 @@ fn every_percept_is_documented_with_its_sending_type() {
             };
             (format!("{}/{}", d.name, d.arity), kind.to_string())
         })
+        .collect()
+}
+
+#[test]
+fn every_request_and_every_epartner_percept_is_documented() {
+    let page = page();
+    let requests: BTreeSet<String> = rows(&page, "Humans and e-partners", "| request |")
+        .into_iter()
+        .map(|(r, _)| r)
         .collect();
-    assert_eq!(documented, actual);
+    let actual: BTreeSet<String> = goal::bw4t::human::REQUESTS
+        .iter()
+        .map(|r| r.to_string())
+        .collect();
+    assert_eq!(requests, actual);
+    let documented: BTreeSet<(String, String)> =
+        rows(&page, "Humans and e-partners", "| e-partner percept |")
+            .into_iter()
+            .map(|(p, rest)| (p, rest.split(" | ").next().unwrap_or("").to_string()))
+            .collect();
+    assert_eq!(documented, typed(goal::bw4t::epartner::declarations()));
 }
