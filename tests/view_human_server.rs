@@ -119,6 +119,10 @@ fn bad_player_requests_get_clear_errors_and_the_run_goes_on() {
             &format!("{{\"token\": \"{mine}\", \"request\": \"goTo(\"}}"),
             "not a term",
         ),
+        (
+            &format!("{{\"token\": \"{mine}\", \"request\": \"sendMessage(all, int(at(_, 'RoomA1')))\"}}"),
+            "leaves something open",
+        ),
         (&"x".repeat(20_000), "longer than"),
     ] {
         let a = send(&url, "POST", "/api/play/request", body);
@@ -299,6 +303,14 @@ fn two_people_play_a_robot_each() {
     );
     let sb = json(&url, &format!("/api/play?token={tb}"));
     assert_eq!(sb["you"], "Human2");
+    // A question of the message list that names everything.
+    let qa = post(
+        &url,
+        "/api/play/request",
+        json!({"token": ta, "request": "sendMessage(all, int(willBeLong('Human2')))"}),
+    );
+    assert_eq!(qa.0, 202, "{qa:?}");
+    assert_eq!(answered(&url, ta, &qa.1["id"])["state"], "applied");
     let ra = post(
         &url,
         "/api/play/request",
@@ -340,11 +352,20 @@ fn two_people_play_a_robot_each() {
         .iter()
         .map(|r| r["request"].as_str().unwrap())
         .collect();
-    assert_eq!(mine, ["goTo('RoomA1')"]);
+    assert_eq!(mine.len(), 2, "{mine:?}");
+    assert_eq!(mine[0], "goTo('RoomA1')");
+    assert_eq!(mine[1], "sendMessage(all,int(willBeLong('Human2')))");
     assert_eq!(served.interrupt(), Some(130));
 
     // The trace has each request for its own robot, and each robot's agent acted on it.
     let recs = records(&trace);
+    let asked: Vec<&Value> = recs
+        .iter()
+        .filter(|r| r["type"] == "message" && r["from"] == "Human1")
+        .collect();
+    assert!(!asked.is_empty(), "Human1 asked the team");
+    let end = recs.last().unwrap();
+    assert_eq!(end["errors"], json!({}), "no agent stopped: {end}");
     for (robot, goal) in [("Human1", "goTo('RoomA1')"), ("Human2", "goTo('RoomC3')")] {
         assert!(
             recs.iter().any(|r| r["type"] == "input"

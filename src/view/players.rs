@@ -194,6 +194,19 @@ impl Players {
         robot.holder = Some((token.to_string(), now));
         let entity = robot.entity.clone();
         let request = parse_request(text).map_err(|e| refuse(400, e))?;
+        // A message with an open subject (a question such as `int(at(_, Room))`) reaches the
+        // agents with a variable in it, and the agents that delete what they received stop on
+        // it (a deleted belief must be ground): the page offers no such message, and the
+        // server takes none.
+        if !request.is_ground() {
+            return Err(refuse(
+                400,
+                format!(
+                    "the request `{}` leaves something open (`_` or a variable): name everything, e.g. goTo('RoomA1')",
+                    text.trim()
+                ),
+            ));
+        }
         let waiting = r.pending.iter().filter(|(_, i)| i.entity == entity).count();
         if waiting >= MAX_PENDING {
             return Err(refuse(
@@ -336,6 +349,8 @@ mod tests {
         assert_eq!(p.request("nobody", "putDown").unwrap_err().status, 403);
         let t = p.take("Human2", None).unwrap();
         assert_eq!(p.request(&t, "goTo(").unwrap_err().status, 400);
+        let open = p.request(&t, "sendMessage(all, int(at(_, 'RoomA1')))");
+        assert!(open.unwrap_err().message.contains("leaves something open"));
         let a = p.request(&t, "goTo('RoomA1')").unwrap();
         let b = p.request(&t, "pickUp(3)").unwrap();
         assert!(b > a);
