@@ -21,6 +21,14 @@ pub fn workers(s: &str) -> Result<usize, String> {
     }
 }
 
+/// A number of HumanBots: 0 to 16 (the map's spawn points may allow fewer).
+pub fn humans(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(n) if n <= 16 => Ok(n),
+        _ => Err("must be a whole number from 0 to 16".into()),
+    }
+}
+
 fn number_in(s: &str, lo: f64, hi: f64, what: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(x) if x.is_finite() && x >= lo && x <= hi => Ok(x),

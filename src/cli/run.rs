@@ -5,6 +5,8 @@
 use super::exit;
 use super::limits;
 use goal::agent::Message;
+use goal::env::EntityInfo;
+use goal::mas::input::{Input, InputLog};
 use goal::mas::run::{Observer, Progress, RunOptions};
 use goal::mas::trace::TraceWriter;
 use goal::mas::{default_team, summary, system, vocabulary, MasSystem, Problem};
@@ -29,6 +31,10 @@ pub struct Args {
     /// Number of robots in the environment.
     #[arg(long)]
     pub robots: Option<usize>,
+    /// Number of HumanBots, robots people play in the browser (BW4T's `humancount`; implies
+    /// --view): `goal run --humans 1` adds a fourth robot to the default team for you.
+    #[arg(long, value_parser = limits::humans)]
+    pub humans: Option<usize>,
     /// Stop after this many environment ticks (at least 1).
     #[arg(long, default_value_t = 10_000, value_parser = limits::positive)]
     pub max_ticks: u64,
@@ -105,6 +111,10 @@ struct Console {
     stop: Arc<AtomicUsize>,
     /// Paces the run for a watching page (`--view`).
     pacer: Option<Pacer>,
+    /// The watching page's controls, through which people play HumanBots.
+    control: Option<Arc<Control>>,
+    /// The people's requests taken so far (a why-question reruns them).
+    inputs: InputLog,
 }
 
 impl Console {
@@ -158,6 +168,46 @@ impl Observer for Console {
     fn pace(&mut self, _round: u64, tick: u64) {
         if let Some(p) = &mut self.pacer {
             p.wait(tick);
+        }
+    }
+    fn entities(&mut self, entities: &[EntityInfo]) {
+        let humans: Vec<String> = entities
+            .iter()
+            .filter(|e| e.kind == goal::view::players::HUMAN_KIND)
+            .map(|e| e.name.clone())
+            .collect();
+        match &self.control {
+            Some(c) => c.players().announce(humans),
+            None if !humans.is_empty() => self.warning(&format!(
+                "nobody can play the HumanBots {} without the browser view: they stand still \
+                 (run with --view to play them)",
+                humans.join(", ")
+            )),
+            None => {}
+        }
+    }
+    fn inputs(&mut self, _round: u64) -> Vec<Input> {
+        self.control
+            .as_ref()
+            .map(|c| c.players().drain())
+            .unwrap_or_default()
+    }
+    fn input_applied(&mut self, round: u64, tick: u64, input: &Input, result: &Result<(), String>) {
+        if let Some(c) = &self.control {
+            c.players().applied(tick, result);
+        }
+        self.inputs.push(round, input.clone());
+        if self.verbose {
+            self.clear();
+            let what = match result {
+                Ok(()) => "taken".to_string(),
+                Err(e) => format!("refused: {e}"),
+            };
+            eprintln!(
+                "[{round}] player request for {}: {} {what}",
+                input.entity,
+                input.request_text()
+            );
         }
     }
     fn progress(&mut self, p: &Progress) {
@@ -226,7 +276,13 @@ struct Watch {
     server: ViewServer,
 }
 
-fn watch(args: &Args, addr: &str, sys: &MasSystem, opts: &RunOptions) -> Option<Watch> {
+fn watch(
+    args: &Args,
+    addr: &str,
+    sys: &MasSystem,
+    opts: &RunOptions,
+    inputs: &InputLog,
+) -> Option<Watch> {
     let feed = Arc::new(Feed::new());
     let control = Control::new(goal::view::control::DEFAULT_SPEED);
     let title = args
@@ -237,10 +293,10 @@ fn watch(args: &Args, addr: &str, sys: &MasSystem, opts: &RunOptions) -> Option<
         feed: feed.clone(),
         control: Some(control.clone()),
         // Runs are deterministic: a why-question reruns the system up to the asked tick.
-        why: Some(Arc::new(goal::why::Why::for_system(
-            sys.clone(),
-            opts.clone(),
-        ))),
+        // People's requests are part of the run: the rerun takes them again.
+        why: Some(Arc::new(
+            goal::why::Why::for_system(sys.clone(), opts.clone()).with_inputs(inputs.clone()),
+        )),
         title,
     };
     let server = open_view(addr, site)?;
@@ -282,6 +338,7 @@ fn options(args: &Args, sys: &MasSystem, stop: &Arc<AtomicUsize>) -> RunOptions 
         seed: args.seed,
         map: args.map.clone(),
         robots: args.robots,
+        humans: args.humans,
         max_ticks: if sys.env.is_none() {
             args.max_cycles.min(args.max_ticks)
         } else {
@@ -324,6 +381,10 @@ fn options(args: &Args, sys: &MasSystem, stop: &Arc<AtomicUsize>) -> RunOptions 
 /// `goal run --view team.mas2g`: clap reads the file as `--view`'s address; a value that is
 /// no address but names an existing file is the system to run, watched on the default address.
 fn view_file_as_system(args: &mut Args) {
+    // People play HumanBots in the browser: --humans serves the view.
+    if args.humans.is_some_and(|h| h > 0) && args.view.is_none() {
+        args.view = Some(server::DEFAULT_ADDR.to_string());
+    }
     let Some(v) = &args.view else { return };
     if args.file.is_none() && server::parse_addr(v).is_err() && std::path::Path::new(v).is_file() {
         args.file = Some(PathBuf::from(v));
@@ -364,11 +425,12 @@ pub fn main(mut args: Args) -> ExitCode {
     }
     let stop = Arc::new(AtomicUsize::new(0));
     let opts = options(&args, &sys, &stop);
-    if sys.env.is_none() && (args.map.is_some() || args.robots.is_some()) {
-        eprintln!("warning: --map and --robots need an environment; ignored");
+    if sys.env.is_none() && (args.map.is_some() || args.robots.is_some() || args.humans.is_some()) {
+        eprintln!("warning: --map, --robots and --humans need an environment; ignored");
     }
+    let inputs = InputLog::new();
     let watched = match &args.view {
-        Some(addr) => match watch(&args, addr, &sys, &opts) {
+        Some(addr) => match watch(&args, addr, &sys, &opts, &inputs) {
             Some(w) => Some(w),
             None => return exit::code(exit::FAILURE),
         },
@@ -392,6 +454,8 @@ pub fn main(mut args: Args) -> ExitCode {
         pacer: watched
             .as_ref()
             .map(|w| Pacer::new(w.control.clone(), stop.clone())),
+        control: watched.as_ref().map(|w| w.control.clone()),
+        inputs,
     };
     let result = goal::mas::run(&sys, &opts, trace, &mut console);
     console.clear();

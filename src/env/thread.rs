@@ -89,6 +89,8 @@ enum Request {
     Status(Sender<EnvStatus>),
     /// The layout (true) or the scene (false) a viewer draws.
     View(bool, Sender<Option<serde_json::Value>>),
+    /// A person's request for an entity ([`Environment::input`]).
+    Input(String, Term, Sender<Result<(), String>>),
     Stop,
 }
 
@@ -167,6 +169,12 @@ impl EnvHandle {
     /// The moving parts a viewer draws now ([`Environment::scene`]).
     pub fn scene(&self) -> Result<Option<serde_json::Value>, EnvError> {
         self.ask(|tx| Request::View(false, tx))
+    }
+
+    /// Hands a person's request for `entity` to the environment between two ticks
+    /// ([`Environment::input`]); the inner `Err` says why the environment refused it.
+    pub fn input(&self, entity: &str, request: &Term) -> Result<Result<(), String>, EnvError> {
+        self.ask(|tx| Request::Input(entity.to_string(), request.clone(), tx))
     }
 
     /// Stops the thread and waits for it.
@@ -256,6 +264,7 @@ fn run_lock_step(mut env: Box<dyn Environment>, rx: Receiver<Request>) {
             }
             Request::Status(tx) => drop(tx.send(status(env.as_ref()))),
             Request::View(layout, tx) => drop(tx.send(view(env.as_mut(), layout))),
+            Request::Input(e, t, tx) => drop(tx.send(env.input(&e, &t))),
             Request::Stop => break,
         }
     }
@@ -297,6 +306,7 @@ fn run_real_time(mut env: Box<dyn Environment>, rx: Receiver<Request>, tps: f64)
             Ok(Request::Act(e, a, tx)) => queue.push((e, a, tx)),
             Ok(Request::Status(tx)) => drop(tx.send(status(env.as_ref()))),
             Ok(Request::View(layout, tx)) => drop(tx.send(view(env.as_mut(), layout))),
+            Ok(Request::Input(e, t, tx)) => drop(tx.send(env.input(&e, &t))),
             Ok(Request::Stop) | Err(RecvTimeoutError::Disconnected) => break,
             Err(RecvTimeoutError::Timeout) => {}
         }

@@ -11,6 +11,7 @@ pub const MAS: &str = include_str!("../../agents/bw4t/bw4t.mas2g");
 pub const FILES: &[(&str, &str)] = &[
     ("team.goal", include_str!("../../agents/bw4t/team.goal")),
     ("robot.goal", include_str!("../../agents/bw4t/robot.goal")),
+    ("human.goal", include_str!("../../agents/bw4t/human.goal")),
 ];
 
 /// The default system (parsed and compiled from the built-in text).

@@ -247,9 +247,9 @@ pub fn env_params(
         }
     }
     if kind != Builtin::Bw4t {
-        if opts.map.is_some() || opts.robots.is_some() {
+        if opts.map.is_some() || opts.robots.is_some() || opts.humans.is_some() {
             obs.warning(&format!(
-                "--map and --robots are for bw4t, not {}; ignored",
+                "--map, --robots and --humans are for bw4t, not {}; ignored",
                 kind.name()
             ));
         }
@@ -269,6 +269,9 @@ pub fn env_params(
     }
     if let Some(r) = opts.robots {
         p.insert("robots".into(), Term::Int(r as i64));
+    }
+    if let Some(h) = opts.humans {
+        p.insert("humans".into(), Term::Int(h as i64));
     }
     let map = p
         .get("map")

@@ -23,6 +23,7 @@
 pub mod default_team;
 pub mod envcheck;
 pub mod environment;
+pub mod input;
 pub mod launch;
 pub mod memory;
 pub mod modular;

@@ -1,7 +1,9 @@
 //! What a run reports besides its trace, and how a test controller takes part in a run.
 
+use super::input::Input;
 use super::stats::{Deliveries, EndReason};
 use crate::agent::{Agent, AgentConfig, Message, Program};
+use crate::env::EntityInfo;
 use crate::term::Term;
 use std::sync::Arc;
 
@@ -36,6 +38,23 @@ pub trait Observer {
     /// Every agent is created and the first round is about to start (benchmarks time the
     /// creation apart from the run).
     fn started(&mut self, _agents: usize, _workers: usize) {}
+    /// The environment's entities, once before the first round (a view offers people the
+    /// HumanBots among them).
+    fn entities(&mut self, _entities: &[EntityInfo]) {}
+    /// Requests people made for entities, taken in round `round` before the environment's
+    /// tick (in this order); a rerun gives those its run recorded for that round.
+    fn inputs(&mut self, _round: u64) -> Vec<Input> {
+        Vec::new()
+    }
+    /// A request taken in round `round` at `tick`: applied (`Ok`) or refused (`Err`: why).
+    fn input_applied(
+        &mut self,
+        _round: u64,
+        _tick: u64,
+        _input: &Input,
+        _result: &Result<(), String>,
+    ) {
+    }
 
     // A test controller takes part in the run through the methods below (`goal test` runs
     // on this same round driver); plain observers keep the defaults.

@@ -17,6 +17,8 @@ pub struct RunOptions {
     pub map: Option<String>,
     /// Number of robots in the environment.
     pub robots: Option<usize>,
+    /// Number of HumanBots (robots people play from the browser view; BW4T's `humancount`).
+    pub humans: Option<usize>,
     /// Stop after this many ticks (rounds without an environment).
     pub max_ticks: u64,
     /// Worker threads for the agents.
@@ -58,6 +60,7 @@ impl Default for RunOptions {
             seed: None,
             map: None,
             robots: None,
+            humans: None,
             max_ticks: 10_000,
             workers: std::thread::available_parallelism().map_or(1, |n| n.get()),
             skip_idle: true,
@@ -80,12 +83,17 @@ impl RunOptions {
     /// The options that change what happens in a run besides its system, seed and map, as the
     /// trace header records them (`options`), so that `goal why` can rerun it exactly.
     pub fn replay_json(&self) -> serde_json::Value {
-        serde_json::json!({
+        let mut v = serde_json::json!({
             "robots": self.robots,
             "max_beliefs": self.max_beliefs,
             "max_mailbox": self.max_mailbox,
             "max_sent": self.max_sent,
-        })
+        });
+        // Only runs with `--humans` say so: the headers of all other runs stay as they were.
+        if let Some(h) = self.humans {
+            v["humans"] = h.into();
+        }
+        v
     }
 
     /// These options with those of a trace header's `options` (missing fields keep their
@@ -95,6 +103,9 @@ impl RunOptions {
         let size = |n: u64| usize::try_from(n).unwrap_or(usize::MAX);
         if let Some(r) = get("robots") {
             self.robots = Some(size(r));
+        }
+        if let Some(h) = get("humans") {
+            self.humans = Some(size(h));
         }
         if let Some(n) = get("max_beliefs") {
             self.max_beliefs = size(n);
@@ -106,5 +117,24 @@ impl RunOptions {
             self.max_sent = size(n);
         }
         self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_rerun_gets_the_humans_of_the_run_and_other_headers_stay_as_they_were() {
+        let plain = RunOptions::default().replay_json();
+        assert!(plain.get("humans").is_none(), "{plain}");
+        let run = RunOptions {
+            humans: Some(2),
+            robots: Some(1),
+            ..RunOptions::default()
+        };
+        let rerun = RunOptions::default().with_replay(&run.replay_json());
+        assert_eq!((rerun.humans, rerun.robots), (Some(2), Some(1)));
+        assert_eq!(RunOptions::default().with_replay(&plain).humans, None);
     }
 }

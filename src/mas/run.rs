@@ -4,6 +4,7 @@
 //! sequence) order. The result depends only on the programs, the map and the seed.
 
 mod end;
+mod input;
 mod start;
 
 use super::environment::{env_params, percept_types};
@@ -366,6 +367,9 @@ impl<'a> Setup<'a> {
                 }
             }
             let mut finished = false;
+            if !env_finished {
+                self.take_inputs((round, tick), trace.as_mut(), obs);
+            }
             match &self.env {
                 // A finished environment stays as it is while a controller goes on.
                 Some(_) if env_finished => tick += 1,

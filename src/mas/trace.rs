@@ -184,6 +184,30 @@ impl TraceWriter {
         }));
     }
 
+    /// A person's request for an entity, taken before the environment's tick of round
+    /// `round`: applied (`ok`) or refused (with the environment's reason).
+    pub fn input(
+        &mut self,
+        round: u64,
+        tick: u64,
+        input: &crate::mas::input::Input,
+        result: &Result<(), String>,
+    ) {
+        let (r, reason) = match result {
+            Ok(()) => ("ok", None),
+            Err(m) => ("refused", Some(m.as_str())),
+        };
+        self.line(json!({
+            "type": "input",
+            "round": round,
+            "tick": tick,
+            "entity": input.entity,
+            "request": input.request_text(),
+            "result": r,
+            "reason": reason,
+        }));
+    }
+
     /// A message routed to its receiver (delivered at the next round).
     pub fn message(&mut self, round: u64, tick: u64, m: &Message, delivered: bool) {
         let r = vocabulary::read(&m.sender, &m.content);

@@ -2,6 +2,7 @@
 //! [`Control`]; the run's observer calls [`Pacer::wait`] after every round (the round driver's
 //! `Observer::pace`), so there is one driver and the trace is the same at any pace.
 
+use super::players::Players;
 use serde_json::{json, Value};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
@@ -28,10 +29,12 @@ struct State {
     ended: bool,
 }
 
-/// What the page may change about a live run.
+/// What the page may change about a live run: its pace, and (for people playing HumanBots)
+/// the requests the run takes at its next tick boundary.
 pub struct Control {
     state: Mutex<State>,
     changed: Condvar,
+    players: Players,
 }
 
 /// A change the page asks for.
@@ -77,7 +80,18 @@ impl Control {
                 ended: false,
             }),
             changed: Condvar::new(),
+            players: Players::new(),
         })
+    }
+
+    /// The people playing the run's HumanBots.
+    pub fn players(&self) -> &Players {
+        &self.players
+    }
+
+    /// True when the run is over.
+    pub fn ended(&self) -> bool {
+        self.lock().ended
     }
 
     fn lock(&self) -> MutexGuard<'_, State> {

@@ -9,11 +9,16 @@
 //!   round driver's [`crate::mas::Observer::pace`]);
 //! * [`replay`]: reading and checking a recorded trace;
 //! * [`server`]: the HTTP routes, the server-sent-event stream and the why endpoint;
-//! * [`page`]: the embedded page (HTML, CSS, JavaScript; no build step, no network).
+//! * [`page`]: the embedded page (HTML, CSS, JavaScript; no build step, no network);
+//! * [`players`], [`play`]: people playing a live run's HumanBots from their browsers (one
+//!   robot each) and the endpoints their pages use; requests reach the run through
+//!   [`Control::players`] at its tick boundaries (`Observer::inputs`).
 
 pub mod control;
 pub mod feed;
 pub mod page;
+pub mod play;
+pub mod players;
 pub mod replay;
 pub mod server;
 

@@ -23,6 +23,16 @@ const ASSETS: &[(&str, &str, &str)] = &[
         include_str!("page/view.js"),
         "text/javascript; charset=utf-8",
     ),
+    (
+        "/player.js",
+        include_str!("page/player.js"),
+        "text/javascript; charset=utf-8",
+    ),
+    (
+        "/player.css",
+        include_str!("page/player.css"),
+        "text/css; charset=utf-8",
+    ),
 ];
 
 /// The content and content type of the page file at `path`.

@@ -202,9 +202,14 @@ fn param<'q>(query: &'q [(String, String)], key: &str) -> Option<&'q str> {
         .map(|(_, v)| v.as_str())
 }
 
-fn handle(request: Request, site: &Site) {
+fn handle(mut request: Request, site: &Site) {
     let url = request.url().to_string();
     let (path, query) = split_url(&url);
+    if path == "/api/play" || path.starts_with("/api/play/") {
+        let (status, body) = super::play::handle(&mut request, site, path, param(&query, "token"));
+        let _ = request.respond(json_response(status, &body));
+        return;
+    }
     let get = *request.method() == Method::Get || *request.method() == Method::Head;
     let response = match (get, path) {
         (true, "/api/stream") => return stream(request, site, &query),

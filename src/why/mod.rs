@@ -9,6 +9,7 @@ mod source;
 pub mod text;
 
 pub use crate::agent::why::{LiteralWhy, Outcome, RuleWhy};
+use crate::mas::input::InputLog;
 use crate::mas::run::RunOptions;
 use crate::mas::MasSystem;
 use serde::Serialize;
@@ -104,7 +105,7 @@ pub fn explain(
     agent: &str,
     tick: u64,
 ) -> Result<WhyReport, WhyError> {
-    replay::explain(system, opts, agent, tick)
+    replay::explain(system, opts, &InputLog::new(), agent, tick)
 }
 
 /// Answers why-questions about one run, again and again (the view server holds one).
@@ -112,6 +113,8 @@ pub struct Why {
     system: MasSystem,
     opts: RunOptions,
     trace: Option<TraceRun>,
+    /// People's requests of the run (from the trace, or growing with a live run).
+    inputs: InputLog,
 }
 
 impl Why {
@@ -123,6 +126,7 @@ impl Why {
         Ok(Why {
             system,
             opts,
+            inputs: trace.inputs.clone(),
             trace: Some(trace),
         })
     }
@@ -133,7 +137,14 @@ impl Why {
             system,
             opts,
             trace: None,
+            inputs: InputLog::new(),
         }
+    }
+
+    /// The same, with the people's requests of the run (a live run's log, which grows).
+    pub fn with_inputs(mut self, inputs: InputLog) -> Why {
+        self.inputs = inputs;
+        self
     }
 
     /// What agent `agent`'s rules did at tick `tick`.
@@ -141,7 +152,7 @@ impl Why {
         if let Some(t) = &self.trace {
             t.check(agent, tick)?;
         }
-        let mut report = explain(&self.system, &self.opts, agent, tick)?;
+        let mut report = replay::explain(&self.system, &self.opts, &self.inputs, agent, tick)?;
         if let Some(t) = &self.trace {
             report.matches_trace = t.matches(agent, report.ran_at, &report.fired)?;
         }

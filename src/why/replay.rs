@@ -5,6 +5,7 @@
 use super::{WhyError, WhyReport};
 use crate::agent::why::Recorder;
 use crate::agent::{Agent, AgentConfig, Program};
+use crate::mas::input::{Input, InputLog};
 use crate::mas::run::{Observer, RunOptions};
 use crate::mas::{EndReason, MasSystem};
 use std::sync::Arc;
@@ -19,6 +20,8 @@ struct Replay {
     program: Option<Arc<Program>>,
     over: bool,
     warnings: Vec<String>,
+    /// People's requests of the run, applied again at their rounds.
+    inputs: InputLog,
 }
 
 impl Observer for Replay {
@@ -48,15 +51,21 @@ impl Observer for Replay {
         self.over = tick > self.until;
     }
 
+    fn inputs(&mut self, round: u64) -> Vec<Input> {
+        self.inputs.at(round)
+    }
+
     fn done(&self) -> bool {
         self.program.is_none() || self.over
     }
 }
 
-/// Reruns `system` up to tick `tick` and explains agent `agent`'s cycle there.
+/// Reruns `system` up to tick `tick` (with people's requests `inputs` at their rounds) and
+/// explains agent `agent`'s cycle there.
 pub(super) fn explain(
     system: &MasSystem,
     opts: &RunOptions,
+    inputs: &InputLog,
     agent: &str,
     tick: u64,
 ) -> Result<WhyReport, WhyError> {
@@ -68,6 +77,7 @@ pub(super) fn explain(
         program: None,
         over: false,
         warnings: Vec::new(),
+        inputs: inputs.clone(),
     };
     let opts = RunOptions {
         max_ticks: opts.max_ticks.min(tick.saturating_add(1)),

@@ -4,6 +4,7 @@
 
 use super::WhyError;
 use crate::mas::environment::env_params;
+use crate::mas::input::InputLog;
 use crate::mas::run::{Quiet, RunOptions};
 use crate::mas::trace::{FORMAT, VERSION};
 use crate::mas::{default_team, system, MasSystem};
@@ -21,6 +22,8 @@ pub(super) struct TraceRun {
     agents: Vec<String>,
     /// Ticks the run lasted (from the end record; `None` when the run did not finish writing).
     ticks: Option<u64>,
+    /// People's requests the run took (its `input` records).
+    pub(super) inputs: InputLog,
 }
 
 fn bad(path: &Path, what: &str) -> WhyError {
@@ -38,8 +41,15 @@ impl TraceRun {
     pub(super) fn open(path: &Path) -> Result<TraceRun, WhyError> {
         let mut header: Option<Value> = None;
         let mut last = String::new();
-        for line in lines(path)? {
+        let inputs = InputLog::new();
+        for (n, line) in lines(path)?.enumerate() {
             let line = line.map_err(|e| bad(path, &format!("cannot read it: {e}")))?;
+            if line.contains("\"type\":\"input\"") {
+                let v: Value = serde_json::from_str(&line).unwrap_or(Value::Null);
+                inputs
+                    .add_record(&v)
+                    .map_err(|e| bad(path, &format!("line {}: {e}", n + 1)))?;
+            }
             if header.is_none() {
                 let v: Value = serde_json::from_str(&line)
                     .map_err(|_| bad(path, "not a goal trace (its first line is not JSON)"))?;
@@ -79,6 +89,7 @@ impl TraceRun {
             header,
             agents,
             ticks,
+            inputs,
         })
     }
 

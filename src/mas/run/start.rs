@@ -33,6 +33,7 @@ impl<'a> Setup<'a> {
             None => (None, None, opts.seed.unwrap_or(0), None),
         };
         if let Some(info) = &info {
+            obs.entities(&info.entities);
             for e in &info.entities {
                 match launcher.entity(e) {
                     Some(l) => launches.extend(l),

@@ -365,6 +365,8 @@ function render() {
   $('tick').value = t;
   $('of').textContent = 'of ' + view.model.maxTick + (view.model.end ? ' (' + view.model.end.end + ')' : '');
   document.body.dataset.tick = t;
+  // Other panels (player.js) draw their part of the same state.
+  document.dispatchEvent(new CustomEvent('goal:render', { detail: s }));
 }
 
 // ---------------------------------------------------------------- why / why not
