@@ -329,7 +329,13 @@ fn the_page_measures_its_load_and_timeline_moves() {
         .find("<div id=\"measure\"")
         .expect("the measure element");
     let m = &dom[at..at + dom[at..].find('>').unwrap()];
-    for key in ["data-load-ms", "data-seek-median-ms", "data-seek-max-ms"] {
+    for key in [
+        "data-load-ms",
+        "data-seek-median-ms",
+        "data-seek-p95-ms",
+        "data-seek-max-ms",
+        "data-state-max-ms",
+    ] {
         let v: f64 = attr(m, key)
             .and_then(|v| v.parse().ok())
             .unwrap_or_else(|| panic!("{key} in {m}"));
