@@ -212,3 +212,21 @@ fn goal_run_view_keeps_its_feed_within_its_budget() {
     assert_eq!(served.interrupt(), Some(3));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn reading_from_past_the_end_gives_nothing_and_no_panic() {
+    let feed = Feed::with_budget(16);
+    for i in 0..10 {
+        feed.push(&format!("{{\"line\":{i}}}"));
+    }
+    let (lines, closed) = feed.read_from(50, Duration::ZERO).unwrap();
+    assert!(lines.is_empty() && !closed);
+    let (lines, _) = feed.read_from(3, Duration::ZERO).unwrap();
+    assert_eq!(
+        &*lines[0], "{\"line\":3}",
+        "an early line, read back from disk"
+    );
+    feed.close();
+    let (lines, closed) = feed.read_from(50, Duration::ZERO).unwrap();
+    assert!(lines.is_empty() && closed);
+}

@@ -161,7 +161,9 @@ impl Feed {
                 .map_err(|e| format!("cannot read the trace's line {} back: {e}", from + 1))?;
             return Ok((lines, closed));
         }
-        let lines = s.tail.range(from - s.first..).cloned().collect();
+        // A client may ask from past the end (a stale or made-up `from`): nothing yet.
+        let skip = (from - s.first).min(s.tail.len());
+        let lines = s.tail.range(skip..).cloned().collect();
         Ok((lines, closed))
     }
 }
