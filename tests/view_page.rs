@@ -5,7 +5,7 @@
 
 mod view_support;
 
-use goal::view::{serve, Feed, Site, WhyProvider};
+use goal::view::{serve, Site, WhyProvider};
 use std::sync::Arc;
 use std::time::Duration;
 use view_support::*;
@@ -255,9 +255,8 @@ fn the_why_panel_shows_the_answer_or_says_there_is_none() {
     let Some(browser) = browser() else { return };
     let dir = scratch("why");
     let trace = default_trace(&dir, 30);
-    let lines = goal::view::replay::load(&trace).unwrap();
     let site = |why: Option<Arc<dyn WhyProvider>>| Site {
-        feed: Arc::new(Feed::complete(lines.clone())),
+        feed: Arc::new(goal::view::replay::load(&trace).unwrap()),
         control: None,
         why,
         title: "why test".into(),
@@ -330,7 +329,13 @@ fn the_page_measures_its_load_and_timeline_moves() {
         .find("<div id=\"measure\"")
         .expect("the measure element");
     let m = &dom[at..at + dom[at..].find('>').unwrap()];
-    for key in ["data-load-ms", "data-seek-median-ms", "data-seek-max-ms"] {
+    for key in [
+        "data-load-ms",
+        "data-seek-median-ms",
+        "data-seek-p95-ms",
+        "data-seek-max-ms",
+        "data-state-max-ms",
+    ] {
         let v: f64 = attr(m, key)
             .and_then(|v| v.parse().ok())
             .unwrap_or_else(|| panic!("{key} in {m}"));

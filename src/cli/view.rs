@@ -2,7 +2,7 @@
 //! local address (printed), until Ctrl-C.
 
 use super::exit;
-use goal::view::{replay, server, Feed, Site};
+use goal::view::{replay, server, Site};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::AtomicUsize;
@@ -20,8 +20,8 @@ pub struct Args {
 
 /// Runs `goal view`.
 pub fn main(args: Args) -> ExitCode {
-    let lines = match replay::load(&args.trace) {
-        Ok(l) => l,
+    let feed = match replay::load(&args.trace) {
+        Ok(f) => f,
         Err(e) => {
             eprintln!("error: {e}");
             return exit::code(exit::FAILURE);
@@ -37,7 +37,7 @@ pub fn main(args: Args) -> ExitCode {
         }
     };
     let site = Site {
-        feed: Arc::new(Feed::complete(lines)),
+        feed: Arc::new(feed),
         control: None,
         why,
         title: args.trace.display().to_string(),

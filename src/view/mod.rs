@@ -4,10 +4,11 @@
 //! from those lines (the trace format is the one data model, docs/trace-format.md); see
 //! docs/view.md.
 //!
-//! * [`feed`]: the trace lines so far, shared between the run and the server's clients;
+//! * [`feed`]: the trace lines so far, shared between the run and the server's clients, the
+//!   newest in memory and the older ones in a [`spill`] file on disk, so memory stays bounded;
 //! * [`control`]: pacing, pausing and single-stepping a live run from the page (through the
 //!   round driver's [`crate::mas::Observer::pace`]);
-//! * [`replay`]: reading and checking a recorded trace;
+//! * [`replay`]: checking a recorded trace and serving it from its file;
 //! * [`server`]: the HTTP routes, the server-sent-event stream and the why endpoint;
 //! * [`page`]: the embedded page (HTML, CSS, JavaScript; no build step, no network);
 //! * [`players`], [`play`]: people playing a live run's HumanBots from their browsers (one
@@ -21,6 +22,7 @@ pub mod play;
 pub mod players;
 pub mod replay;
 pub mod server;
+pub mod spill;
 
 pub use control::{Control, Pacer};
 pub use feed::{Feed, FeedWriter};

@@ -3,7 +3,7 @@
 //! own thread, so a slow or vanished client never holds up the run or other clients.
 
 use super::control::{Command, Control};
-use super::feed::Feed;
+use super::feed::{Feed, FeedReader};
 use super::{page, WhyProvider};
 use serde_json::{json, Value};
 use std::io::Write;
@@ -213,7 +213,7 @@ fn handle(mut request: Request, site: &Site) {
     let get = *request.method() == Method::Get || *request.method() == Method::Head;
     let response = match (get, path) {
         (true, "/api/stream") => return stream(request, site, &query),
-        (true, "/api/trace") => trace(site),
+        (true, "/api/trace") => return trace(request, site),
         (true, "/api/info") => json_response(200, &info(site)),
         (true, "/api/why") => why(site, &query),
         (false, "/api/control") => control(site, &query, &url),
@@ -237,27 +237,25 @@ fn info(site: &Site) -> Value {
         "why": site.why.is_some(),
         "lines": lines,
         "complete": complete,
+        "feed_bytes": site.feed.held_bytes(),
         "control": site.control.as_ref().map(|c| c.to_json()),
     })
 }
 
 /// Every trace line so far, as JSON lines; `X-Trace-Lines` says how many (a live page then
-/// streams from there).
-fn trace(site: &Site) -> Response<std::io::Cursor<Vec<u8>>> {
-    let (lines, complete) = site.feed.read_from(0, Duration::ZERO);
-    let mut body = Vec::with_capacity(lines.iter().map(|l| l.len() + 1).sum());
-    for l in &lines {
-        body.extend_from_slice(l.as_bytes());
-        body.push(b'\n');
-    }
-    Response::from_data(body)
-        .with_header(header(
-            "Content-Type",
-            "application/x-ndjson; charset=utf-8",
-        ))
-        .with_header(header("Cache-Control", "no-store"))
-        .with_header(header("X-Trace-Lines", &lines.len().to_string()))
-        .with_header(header("X-Trace-Complete", &complete.to_string()))
+/// streams from there). The body is read from the feed as it is sent.
+fn trace(request: Request, site: &Site) {
+    let (lines, bytes) = site.feed.size();
+    let complete = site.feed.len().1;
+    let body = FeedReader::new(site.feed.clone(), 0, lines);
+    let headers = vec![
+        header("Content-Type", "application/x-ndjson; charset=utf-8"),
+        header("Cache-Control", "no-store"),
+        header("X-Trace-Lines", &lines.to_string()),
+        header("X-Trace-Complete", &complete.to_string()),
+    ];
+    let length = usize::try_from(bytes).ok();
+    let _ = request.respond(Response::new(200.into(), headers, body, length, None));
 }
 
 /// Server-sent events: one `data:` event per trace line from `from` on, as the run writes
@@ -274,7 +272,14 @@ fn stream(request: Request, site: &Site, query: &[(String, String)]) {
         return;
     }
     loop {
-        let (lines, closed) = site.feed.read_from(from, STREAM_WAIT);
+        let (lines, closed) = match site.feed.read_from(from, STREAM_WAIT) {
+            Ok(r) => r,
+            Err(e) => {
+                // The page then says its connection to the run is lost.
+                eprintln!("warning: the view stopped streaming to a page: {e}");
+                return;
+            }
+        };
         let mut chunk = String::new();
         for l in &lines {
             chunk.push_str("data: ");

@@ -217,6 +217,7 @@ function drawLayout(layout) {
     }
     if (z.kind !== 'corridor') el('text', { x: a + .4, y: b + 1.6, class: 'zlabel' }, g).textContent = z.name;
   }
+  view.doors = Array.from(g.querySelectorAll('.door'));
   const seq = $('sequence');
   seq.textContent = '';
   seq.dataset.total = layout.sequence.length;
@@ -241,20 +242,40 @@ function nest(world) {
   return o;
 }
 
-function drawWorld(s) {
-  if (!view.model.layout) return;
-  const w = nest(s.world);
-  const g = $('dynamic');
-  g.textContent = '';
-  const occupied = new Set(w.occupied || []);
-  for (const d of document.querySelectorAll('#static .door')) d.classList.toggle('occupied', occupied.has(d.dataset.room));
-  const blocks = w.blocks || {};
+// The blocks lying about (not held), as rectangles kept from one drawing to the next: most
+// blocks do not move between two ticks, so only the ones that did are touched.
+function drawBlocks(blocks) {
+  const g = $('blocks');
+  const drawn = view.blocks;
+  for (const [id, e] of drawn) {
+    const b = blocks[id];
+    if (!b || b.holder) { e.remove(); drawn.delete(id); }
+  }
   for (const id in blocks) {
     const b = blocks[id];
     if (b.holder) continue;
-    el('rect', { x: b.pos[0] - .5, y: b.pos[1] - .5, width: 1, height: 1, fill: colour(b.color),
-      class: 'block', 'data-id': id, 'data-color': b.color }, g);
+    const x = b.pos[0] - .5, y = b.pos[1] - .5, fill = colour(b.color);
+    let e = drawn.get(id);
+    if (!e) {
+      e = el('rect', { width: 1, height: 1, class: 'block', 'data-id': id }, g);
+      drawn.set(id, e);
+    }
+    if (e.dataset.x !== String(x) || e.dataset.y !== String(y)) {
+      e.setAttribute('x', x); e.setAttribute('y', y); e.dataset.x = x; e.dataset.y = y;
+    }
+    if (e.dataset.color !== b.color) { e.setAttribute('fill', fill); e.dataset.color = b.color; }
   }
+}
+
+function drawWorld(s) {
+  if (!view.model.layout) return;
+  const w = nest(s.world);
+  const occupied = new Set(w.occupied || []);
+  for (const d of view.doors) d.classList.toggle('occupied', occupied.has(d.dataset.room));
+  const blocks = w.blocks || {};
+  drawBlocks(blocks);
+  const g = $('dynamic');
+  g.textContent = '';
   const robots = w.robots || {};
   for (const name in robots) {
     const r = robots[name];
@@ -288,16 +309,22 @@ function drawWorld(s) {
   if (p) p.textContent = done + ' of ' + seq.dataset.total + ' delivered';
 }
 
+// Shows `items` in the list `id`, changing only the entries that differ from what it shows
+// (moving the timeline a tick changes a few beliefs, not the hundreds shown).
 function fillList(id, items, countId) {
   const ul = $(id);
   const all = Array.from(items);
-  ul.textContent = '';
-  const frag = document.createDocumentFragment();
-  for (const t of all.slice(0, MAX_LIST)) {
-    const li = document.createElement('li'); li.textContent = t; frag.appendChild(li);
+  const shown = all.slice(0, MAX_LIST);
+  if (all.length > MAX_LIST) shown.push('… ' + (all.length - MAX_LIST) + ' more');
+  const lis = ul.children;
+  for (let i = 0; i < shown.length; i++) {
+    if (i < lis.length) {
+      if (lis[i].textContent !== shown[i]) lis[i].textContent = shown[i];
+    } else {
+      const li = document.createElement('li'); li.textContent = shown[i]; ul.appendChild(li);
+    }
   }
-  if (all.length > MAX_LIST) { const li = document.createElement('li'); li.textContent = '… ' + (all.length - MAX_LIST) + ' more'; frag.appendChild(li); }
-  ul.appendChild(frag);
+  while (lis.length > shown.length) ul.removeChild(ul.lastChild);
   if (countId) $(countId).textContent = '(' + all.length + ')';
 }
 
@@ -340,17 +367,24 @@ function drawMind(s) {
   fillList('errors', m.errors.slice().reverse());
 }
 
+// The messages up to tick t, newest first; entries are reused from the last drawing and
+// rewritten only where the message at their place changed.
 function drawMessages(t) {
   const ol = $('messages');
-  ol.textContent = '';
   const only = $('onlyagent').checked ? view.selected : null;
-  for (const m of view.model.messagesUpTo(t, 100, only)) {
-    const li = document.createElement('li');
+  const list = view.model.messagesUpTo(t, 100, only);
+  const lis = ol.children;
+  list.forEach((m, i) => {
+    let li = lis[i];
+    if (!li) { li = document.createElement('li'); ol.appendChild(li); }
+    if (li.message === m) return;
+    li.message = m;
+    li.textContent = '';
     const act = document.createElement('span'); act.className = 'act'; act.textContent = m.act;
     li.append(m.tick + ' ' + m.from + ' → ' + m.to + ' ', act, ' ' + (m.english ? '“' + m.english + '” ' : '') + m.content);
-    if (!m.delivered) li.classList.add('lost');
-    ol.appendChild(li);
-  }
+    li.classList.toggle('lost', !m.delivered);
+  });
+  while (lis.length > list.length) ol.removeChild(ol.lastChild);
 }
 
 function render() {
@@ -409,7 +443,8 @@ function askWhy(sync) {
 
 // ---------------------------------------------------------------- controls
 
-const view = { model: new Model(), tick: 0, selected: null, playing: false, follow: false, info: {}, speed: 100 };
+const view = { model: new Model(), tick: 0, selected: null, playing: false, follow: false, info: {}, speed: 100,
+  doors: [], blocks: new Map() };
 let pending = false;
 
 function status(text) { $('status').textContent = text; }
@@ -539,21 +574,29 @@ function load() {
 }
 
 // ?measure: the load time (navigation start to the first drawing of the run) and the time to
-// move the timeline to 50 spread ticks, written into #measure (read in the headless browser).
+// move the timeline to 200 spread ticks and lay the page out again, written into #measure (read
+// in the headless browser).
 function measure(loaded) {
-  const n = 50, times = [];
+  const n = 200, times = [], model = [];
   for (let i = 0; i < n; i++) {
     const t = Math.floor((i * 7919) % (view.model.maxTick + 1));
-    const a = performance.now();
+    let a = performance.now();
+    view.model.at(t);
+    model.push(performance.now() - a);
+    a = performance.now();
     view.tick = t; render();
+    void document.body.offsetHeight; // the style and layout the change costs, too
     times.push(performance.now() - a);
   }
   times.sort((a, b) => a - b);
+  model.sort((a, b) => a - b);
   const out = $('measure');
   out.dataset.loadMs = loaded.toFixed(0);
   out.dataset.pageMs = performance.now().toFixed(0);
   out.dataset.seekMedianMs = times[n >> 1].toFixed(1);
+  out.dataset.seekP95Ms = times[Math.floor(n * .95)].toFixed(1);
   out.dataset.seekMaxMs = times[n - 1].toFixed(1);
+  out.dataset.stateMaxMs = model[n - 1].toFixed(1); // of which the model's state at the tick
   out.dataset.ticks = view.model.maxTick;
   out.textContent = JSON.stringify(out.dataset);
 }
