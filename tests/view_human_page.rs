@@ -128,7 +128,7 @@ fn go_to(tab: &mut Tab, zone: &str) -> bool {
 fn handle_a_block(tab: &mut Tab, room: &str) -> bool {
     for id in blocks_in(tab, room) {
         // A block under a robot cannot be seen, nor clicked.
-        if !tab.try_click(&format!("#dynamic rect.block[data-id=\"{id}\"]")) {
+        if !tab.try_click(&format!("#blocks rect.block[data-id=\"{id}\"]")) {
             continue;
         }
         if !applied(tab, &format!("goToBlock({id})"))
