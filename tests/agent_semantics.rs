@@ -335,7 +335,7 @@ fn messages_wrap_their_mood_and_arrive_next_cycle() {
     assert!(out
         .messages
         .iter()
-        .all(|m| m.sender == "a" && m.receiver == "b"));
+        .all(|m| m.sender.name() == "a" && m.receiver.name() == "b"));
     let mut b = agent_with(
         "main module { program {
             forall bel(received(S, imp(M))) do print(S/M).
@@ -361,7 +361,7 @@ fn sendonce_skips_receivers_already_sent_to() {
         first
             .messages
             .iter()
-            .map(|m| m.receiver.as_str())
+            .map(|m| m.receiver.name())
             .collect::<Vec<_>>(),
         ["b", "c"]
     );

@@ -86,6 +86,8 @@ impl Core {
     /// watcher (`goal test`) observes actions.
     pub fn done_with(&mut self, action: impl FnOnce() -> Term) {
         if self.level >= TraceLevel::Changes || self.watcher.is_some() {
+            // A watcher may read the mailbox.
+            self.ms.mailbox.settle();
             let t = action();
             self.watch(Observed::Action(&t));
             if self.level >= TraceLevel::Changes {
@@ -233,6 +235,11 @@ impl Core {
 
     /// Blind commitment on the current attention set.
     pub fn check_goals(&mut self) -> Result<(), Fault> {
+        if self.ms.attention.current().goals().is_empty() {
+            return Ok(());
+        }
+        // Goals are checked against the beliefs, mailbox included.
+        self.ms.mailbox.settle();
         let mut ev = Vec::new();
         self.ms.goal_check(&mut ev)?;
         self.changes(ev);

@@ -13,7 +13,7 @@ use super::program::Program;
 use super::timing::Timing;
 use super::trace::{Event, TraceLevel};
 use super::watch::{Observed, Watcher};
-use crate::term::Term;
+use crate::term::{Sym, Term};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::collections::BTreeSet;
@@ -111,6 +111,8 @@ impl Default for AgentConfig {
 /// The mutable core of an agent that actions work on.
 pub struct Core {
     pub name: String,
+    /// The agent's name interned (messages carry it).
+    pub me: Sym,
     pub ms: MentalState,
     pub rng: ChaCha8Rng,
     pub out: CycleOutput,
@@ -283,6 +285,7 @@ impl Agent {
             program,
             core: Core {
                 name: name.to_string(),
+                me: Sym::intern(name),
                 ms,
                 rng: ChaCha8Rng::seed_from_u64(config.seed),
                 out: CycleOutput::default(),
@@ -473,6 +476,8 @@ impl Agent {
                 self.stop(StopReason::Error(e));
             }
         }
+        // Whatever stopped a combo early, no `sent/2` fact stays held past the cycle.
+        self.core.ms.mailbox.settle();
         self.collect_printed();
         let out = &self.core.out;
         self.waiting = self.stopped.is_none()

@@ -2,16 +2,17 @@
 //! message type exchanged between agents.
 
 use super::kr_bridge::FactBase;
-use crate::term::{well_known as wk, Term};
+use crate::term::{well_known as wk, Sym, Term};
 
 /// A message from one agent to one receiver; `content` already carries the mood wrapper
-/// (`p`, `imp(p)` or `int(p)`).
+/// (`p`, `imp(p)` or `int(p)`). Agents are named by their interned names: routing a message
+/// compares and looks up symbols, and the text is read only where a name is shown.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Message {
     /// Name of the sending agent.
-    pub sender: String,
+    pub sender: Sym,
     /// Name of the receiving agent.
-    pub receiver: String,
+    pub receiver: Sym,
     /// Mood-wrapped content.
     pub content: Term,
 }
@@ -20,6 +21,11 @@ pub struct Message {
 #[derive(Clone, Debug, Default)]
 pub struct Mailbox {
     facts: FactBase,
+    /// `sent/2` facts of sends in the running combo, not yet in `facts` (each surely new
+    /// there): a combo that sends and then deletes its own `sent/2` fact — the usual way to
+    /// pass something on — then never touches the fact base for it. Moved into `facts` by
+    /// [`Mailbox::settle`] before anything can read the mailbox.
+    held: Vec<Term>,
     /// The agent's conversations (their `session/4` facts are among `facts`).
     pub sessions: crate::clamr::session::Book,
 }
@@ -30,24 +36,54 @@ pub fn is_mail_fact(t: &Term) -> bool {
 }
 
 impl Mailbox {
-    /// The facts for queries.
+    /// The facts for queries (callers settle held facts first: see [`Mailbox::settle`]).
     pub fn facts(&self) -> &FactBase {
+        debug_assert!(self.held.is_empty(), "mailbox read with held sent/2 facts");
         &self.facts
     }
 
     /// Adds a mail fact; false when already present.
     pub fn insert(&mut self, fact: Term) -> bool {
+        // Held facts come first, so the base keeps the order the facts were added in.
+        self.settle();
         self.facts.insert(fact)
     }
 
     /// Removes a mail fact; false when absent.
     pub fn delete(&mut self, fact: &Term) -> bool {
+        if let Some(k) = self.held.iter().position(|h| h == fact) {
+            self.held.remove(k);
+            return true;
+        }
         self.facts.delete(fact)
+    }
+
+    /// Adds the `sent/2` fact of a send; false when already present. The fact is held back
+    /// (not yet in the fact base) while it is surely new: no `sent/2` fact is in the base and
+    /// none held is equal. Whoever reads the mailbox calls [`Mailbox::settle`] first.
+    pub fn hold_sent(&mut self, fact: Term) -> bool {
+        if self.held.contains(&fact) {
+            return false;
+        }
+        if self.facts.has_pred(wk::SENT, 2) {
+            self.settle();
+            return self.facts.insert(fact);
+        }
+        self.held.push(fact);
+        true
+    }
+
+    /// Moves the held `sent/2` facts into the fact base, in the order they were sent.
+    pub fn settle(&mut self) {
+        for f in std::mem::take(&mut self.held) {
+            self.facts.insert(f);
+        }
     }
 
     /// True when the agent already sent `content` to `receiver`.
     pub fn has_sent(&self, receiver: &Term, content: &Term) -> bool {
-        self.facts.contains(&sent(receiver, content))
+        let f = sent(receiver, content);
+        self.held.contains(&f) || self.facts.contains(&f)
     }
 }
 

@@ -329,7 +329,7 @@ impl<'a> Setup<'a> {
                 }
             }
             // Messages: (sender, sequence) order; a stable sort keeps each sender's sequence.
-            sent.sort_by(|a, b| a.sender.cmp(&b.sender));
+            sent.sort_by(|a, b| a.sender.name().cmp(b.sender.name()));
             messages += sent.len() as u64;
             if let Some(c) = self.comm.as_mut() {
                 let mut warn = |w: &str| obs.warning(w);
@@ -343,7 +343,7 @@ impl<'a> Setup<'a> {
                 sent = arrived;
             }
             for m in sent {
-                let receiver = self.router.index(&m.receiver);
+                let receiver = self.router.index(m.receiver);
                 let full = receiver.is_some_and(|j| self.mailbox_full(j, round, tick, obs));
                 let delivered = receiver.is_some() && !full;
                 if let Some(t) = trace.as_mut() {

@@ -2,13 +2,35 @@
 //! collects the outputs, returned in agent-index order so the result never depends on thread
 //! timing. The calling thread runs the first share itself, and rounds with very few cycles
 //! (a token ring moves one agent per round) run entirely on it: waking a thread costs more
-//! than such a cycle.
+//! than such a cycle. Between rounds both sides wait by spinning briefly before they block:
+//! rounds are often shorter than putting a thread to sleep and waking it again.
 
 use crate::agent::{Agent, CycleOutput, Message};
 use crate::term::Term;
-use crossbeam_channel::{unbounded, Receiver, Sender};
+use crossbeam_channel::{unbounded, Receiver, RecvError, Sender, TryRecvError};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+/// How long a thread waiting for the other side of a round spins before it blocks.
+const SPIN: Duration = Duration::from_micros(50);
+
+/// The next value on `rx`: polled for up to [`SPIN`], then waited for asleep.
+fn wait<T>(rx: &Receiver<T>) -> Result<T, RecvError> {
+    let start = Instant::now();
+    loop {
+        for _ in 0..64 {
+            match rx.try_recv() {
+                Ok(v) => return Ok(v),
+                Err(TryRecvError::Disconnected) => return Err(RecvError),
+                Err(TryRecvError::Empty) => std::hint::spin_loop(),
+            }
+        }
+        if start.elapsed() >= SPIN {
+            return rx.recv();
+        }
+    }
+}
 
 /// One cycle to run: agent index, percept batch, incoming messages.
 pub type Job = (usize, Vec<Term>, Vec<Message>);
@@ -136,9 +158,7 @@ impl Pool {
         }
         let mine = step(&self.agents, (clock, jobs), &mut out);
         for w in busy {
-            let done = self.workers[w]
-                .rx
-                .recv()
+            let done = wait(&self.workers[w].rx)
                 .map_err(|_| PoolError("a worker thread stopped (panic in an agent?)".into()))?;
             out.extend(done);
         }
@@ -164,7 +184,7 @@ impl Drop for Pool {
 }
 
 fn work(agents: Agents, rx: Receiver<Share>, tx: Sender<Done>) {
-    while let Ok(jobs) = rx.recv() {
+    while let Ok(jobs) = wait(&rx) {
         let mut done = Vec::with_capacity(jobs.1.len());
         // An error (unknown index, poisoned lock) ends this thread; the caller then reports
         // that a worker stopped.
