@@ -34,6 +34,17 @@ impl Core {
                 Ok(Outcome::Done { real: true })
             }
             Act::Delete(t) => {
+                if let Some(f) = self.ms.mailbox.delete_matching(t, s) {
+                    // The message the rule matched, deleted without building it first.
+                    if self.ms.record {
+                        self.changes(vec![Event::MailDeleted {
+                            fact: f.to_string(),
+                        }]);
+                    }
+                    self.done_with(|| Term::compound("delete", vec![f]));
+                    self.check_goals()?;
+                    return Ok(Outcome::Done { real: true });
+                }
                 let u = ground(s, t, "delete")?;
                 let mut ev = Vec::new();
                 self.ms.delete(&u, &mut ev)?;

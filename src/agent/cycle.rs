@@ -199,6 +199,11 @@ impl Core {
 
     /// Applies a percept batch to the percept base and records what changed.
     pub fn perceive(&mut self, percepts: &[Term], types: &PerceptTypes, keep_batch: bool) {
+        let p = &self.ms.percepts;
+        if percepts.is_empty() && p.facts().is_empty() && p.batch().is_empty() {
+            // Nothing to replace or remove: most cycles of agents without an environment.
+            return;
+        }
         let ch = self.ms.percepts.apply(percepts, types, keep_batch);
         let record = self.level >= TraceLevel::Changes;
         for p in ch.removed.iter().filter(|_| record) {
@@ -280,6 +285,9 @@ impl Agent {
         }
         ms.record = config.trace >= TraceLevel::Changes;
         ms.models.enabled = program.uses_models;
+        ms.mailbox.sessions = program
+            .uses_sessions
+            .then(crate::clamr::session::Book::default);
         let file = program.file.clone();
         let mut agent = Agent {
             program,

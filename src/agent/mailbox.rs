@@ -2,7 +2,33 @@
 //! message type exchanged between agents.
 
 use super::kr_bridge::FactBase;
-use crate::term::{well_known as wk, Sym, Term};
+use crate::term::{well_known as wk, Subst, Sym, Term};
+
+/// How many facts of a predicate [`Mailbox::delete_matching`] compares before it leaves a
+/// delete to the fact base's hash lookup.
+const SCAN: usize = 8;
+
+/// True when `pattern` under `s` is the ground term `fact` (walked side by side, nothing built).
+fn same_under(s: &Subst, pattern: &Term, fact: &Term) -> bool {
+    let mut work = vec![(pattern, fact)];
+    while let Some((p, f)) = work.pop() {
+        match (s.walk(p), f) {
+            (Term::Var(_), _) => return false,
+            (Term::Compound(a), Term::Compound(b)) => {
+                if a.name != b.name || a.args.len() != b.args.len() {
+                    return false;
+                }
+                work.extend(a.args.iter().zip(b.args.iter()));
+            }
+            (a, b) => {
+                if a != b {
+                    return false;
+                }
+            }
+        }
+    }
+    true
+}
 
 /// A message from one agent to one receiver; `content` already carries the mood wrapper
 /// (`p`, `imp(p)` or `int(p)`). Agents are named by their interned names: routing a message
@@ -26,8 +52,10 @@ pub struct Mailbox {
     /// pass something on — then never touches the fact base for it. Moved into `facts` by
     /// [`Mailbox::settle`] before anything can read the mailbox.
     held: Vec<Term>,
-    /// The agent's conversations (their `session/4` facts are among `facts`).
-    pub sessions: crate::clamr::session::Book,
+    /// The agent's conversations (their `session/4` facts are among `facts`); `None` when
+    /// nothing in the program can see them (`Program::uses_sessions`): then they are not
+    /// followed at all, which keeps a long-running agent's mailbox from growing with them.
+    pub sessions: Option<crate::clamr::session::Book>,
 }
 
 /// True for `received/2` and `sent/2` facts (which insert/delete route to the mailbox).
@@ -56,6 +84,28 @@ impl Mailbox {
             return true;
         }
         self.facts.delete(fact)
+    }
+
+    /// Removes the mail fact that `pattern` stands for under `s`, found without building it:
+    /// a rule deleting the message its condition matched. `None` when `pattern` is no mail
+    /// fact held or among the first [`SCAN`] facts of its predicate; the caller then takes the
+    /// general way (building the fact, which also reports what is not ground).
+    pub fn delete_matching(&mut self, pattern: &Term, s: &Subst) -> Option<Term> {
+        if !is_mail_fact(pattern) {
+            return None;
+        }
+        if let Some(k) = self.held.iter().position(|h| same_under(s, pattern, h)) {
+            return Some(self.held.remove(k));
+        }
+        let (name, arity) = pattern.functor()?;
+        let f = self
+            .facts
+            .facts_of(name, arity)
+            .take(SCAN)
+            .find(|f| same_under(s, pattern, f))?
+            .clone();
+        self.facts.delete(&f);
+        Some(f)
     }
 
     /// Adds the `sent/2` fact of a send; false when already present. The fact is held back
@@ -95,4 +145,47 @@ pub fn sent(receiver: &Term, content: &Term) -> Term {
 /// `received(Sender, Content)`.
 pub fn received(sender: &Term, content: &Term) -> Term {
     Term::compound(wk::RECEIVED, vec![sender.clone(), content.clone()])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn term(text: &str) -> Term {
+        crate::syntax::prolog::Reader::new("t")
+            .term(text, 0)
+            .expect("term")
+            .term
+    }
+
+    #[test]
+    fn deletes_the_fact_a_pattern_stands_for_without_building_it() {
+        let mut mb = Mailbox::default();
+        mb.insert(term("received(a, imp(token(1, 5)))"));
+        mb.insert(term("received(a, imp(token(2, 5)))"));
+        assert!(mb.hold_sent(term("sent(b, imp(token(1, 4)))")));
+        let mut s = Subst::new();
+        s.bind(Sym::intern("T"), Term::Int(2));
+        s.bind(Sym::intern("K"), Term::Int(5));
+        let pattern = term("received(a, imp(token(T, K)))");
+        assert_eq!(
+            mb.delete_matching(&pattern, &s),
+            Some(term("received(a, imp(token(2, 5)))"))
+        );
+        // Gone: the same pattern now finds nothing.
+        assert_eq!(mb.delete_matching(&pattern, &s), None);
+        s.bind(Sym::intern("R"), Term::Int(4));
+        let held = term("sent(b, imp(token(1, R)))");
+        assert_eq!(
+            mb.delete_matching(&held, &s),
+            Some(term("sent(b, imp(token(1, 4)))"))
+        );
+        mb.settle();
+        assert_eq!(mb.facts().len(), 1);
+        // An unbound variable or a fact of another kind: left to the general way.
+        let open = term("received(a, imp(token(1, X)))");
+        assert_eq!(mb.delete_matching(&open, &s), None);
+        assert_eq!(mb.delete_matching(&term("at(a)"), &s), None);
+        assert_eq!(mb.facts().len(), 1);
+    }
 }

@@ -24,6 +24,12 @@ pub fn wrap_mood(mood: Mood, content: Term) -> Term {
 /// The agent names that the terms `ts` of a selector stand for under `s` (atoms, strings and
 /// lists of them); an unbound variable is an error.
 pub fn agent_names(ts: &[Term], s: &Subst) -> Result<Vec<Sym>, Fault> {
+    // The usual selector, one name (`(Next).send(...)`), without building a work list.
+    if let [t] = ts {
+        if let Term::Atom(a) = s.apply(t) {
+            return Ok(if a == wk::NIL { Vec::new() } else { vec![a] });
+        }
+    }
     let mut names = Vec::new();
     let mut work: Vec<Term> = ts.iter().rev().map(|t| s.apply(t)).collect();
     while let Some(t) = work.pop() {
@@ -162,8 +168,10 @@ impl Core {
     /// `session/4` facts in the mailbox up to date (no trace events: runtime bookkeeping).
     fn converse(&mut self, from: Sym, to: Sym, content: &Term) {
         use crate::clamr::session::Change;
+        let Some(book) = self.ms.mailbox.sessions.as_mut() else {
+            return;
+        };
         let act = crate::clamr::classify(from.name(), content);
-        let book = &mut self.ms.mailbox.sessions;
         let changes = book.observe(from, to, content, &act, 0);
         for c in changes {
             let (i, old) = match c {
@@ -171,7 +179,7 @@ impl Core {
                 Change::Moved(i, old) => (i, Some(old)),
                 Change::Violation(_) => continue,
             };
-            let Some(s) = self.ms.mailbox.sessions.get(i) else {
+            let Some(s) = self.ms.mailbox.sessions.as_ref().and_then(|b| b.get(i)) else {
                 continue;
             };
             let new = s.fact(self.me);

@@ -10,6 +10,9 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
 
+/// The name of the facts `session(Id, With, Act, State)` an agent sees its conversations by.
+pub const FACT: &str = "session";
+
 /// Where a conversation stands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -115,7 +118,7 @@ impl Session {
             vec![Term::Atom(self.initiator), Term::Int(n)],
         );
         Term::compound(
-            *SESSION.get_or_init(|| Sym::intern("session")),
+            *SESSION.get_or_init(|| Sym::intern(FACT)),
             vec![
                 id,
                 Term::Atom(with),
