@@ -10,7 +10,11 @@ const SCAN: usize = 8;
 
 /// True when `pattern` under `s` is the ground term `fact` (walked side by side, nothing built).
 fn same_under(s: &Subst, pattern: &Term, fact: &Term) -> bool {
-    let mut work = vec![(pattern, fact)];
+    if pattern.functor() != fact.functor() {
+        return false;
+    }
+    // Messages are small: the walk's stack stays inline.
+    let mut work: smallvec::SmallVec<[(&Term, &Term); 16]> = smallvec::smallvec![(pattern, fact)];
     while let Some((p, f)) = work.pop() {
         match (s.walk(p), f) {
             (Term::Var(_), _) => return false,
