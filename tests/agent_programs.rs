@@ -131,7 +131,7 @@ fn ping_pong_pair_exchanges_moods() {
             }
         }
         for m in oa.messages.into_iter().chain(ob.messages) {
-            match m.receiver.as_str() {
+            match m.receiver.name() {
                 "alice" => to_alice.push(m),
                 _ => to_bob.push(m),
             }

@@ -335,7 +335,7 @@ fn messages_wrap_their_mood_and_arrive_next_cycle() {
     assert!(out
         .messages
         .iter()
-        .all(|m| m.sender == "a" && m.receiver == "b"));
+        .all(|m| m.sender.name() == "a" && m.receiver.name() == "b"));
     let mut b = agent_with(
         "main module { program {
             forall bel(received(S, imp(M))) do print(S/M).
@@ -346,6 +346,57 @@ fn messages_wrap_their_mood_and_arrive_next_cycle() {
     );
     let outs = vec![b.step(&[], &out.messages)];
     assert_eq!(printed(&outs), ["a/go(1)"]);
+}
+
+/// The `session/4` facts an agent holds.
+fn session_facts(a: &goal::agent::Agent) -> Vec<String> {
+    let facts = a.mental_state().mailbox.facts();
+    let session = goal::term::Sym::intern("session");
+    facts
+        .iter()
+        .filter(|f| f.functor().is_some_and(|(n, _)| n == session))
+        .map(|f| f.to_string())
+        .collect()
+}
+
+#[test]
+fn session_facts_are_kept_for_programs_that_can_see_them() {
+    let mut a = agent_with(
+        "main module { program { if true then (b).send(!go) + exit-module. } }",
+        "a",
+        &["b"],
+        1,
+    );
+    let out = a.step(&[], &[]);
+    // Nothing in the sender's program can see its conversations: it does not follow them.
+    assert_eq!(session_facts(&a), Vec::<String>::new());
+    let mut watcher = agent_with(
+        "main module { program {
+            if bel(session(Id, a, request, open)) then print(Id) + exit-module. } }",
+        "b",
+        &["a"],
+        1,
+    );
+    assert_eq!(printed_after(&mut watcher, &out.messages), ["a-1"]);
+    assert_eq!(session_facts(&watcher), ["session(a-1,a,request,open)"]);
+    // `log(mb)` shows every mail fact, so a program that logs follows its conversations too.
+    let mut logger = agent_with(
+        "main module { program { if true then log(mb) + exit-module. } }",
+        "b",
+        &["a"],
+        1,
+    );
+    logger.step(&[], &out.messages);
+    assert_eq!(session_facts(&logger), ["session(a-1,a,request,open)"]);
+    let mut quiet = agent_with(
+        "main module { program {
+            if bel(received(a, imp(go))) then print(got) + exit-module. } }",
+        "b",
+        &["a"],
+        1,
+    );
+    assert_eq!(printed_after(&mut quiet, &out.messages), ["got"]);
+    assert_eq!(session_facts(&quiet), Vec::<String>::new());
 }
 
 #[test]
@@ -361,7 +412,7 @@ fn sendonce_skips_receivers_already_sent_to() {
         first
             .messages
             .iter()
-            .map(|m| m.receiver.as_str())
+            .map(|m| m.receiver.name())
             .collect::<Vec<_>>(),
         ["b", "c"]
     );

@@ -183,7 +183,7 @@ fn send_moods_are_in_the_keyword() {
     let out = step(&mut a, &[], &[]);
     let sent: Vec<String> = out.messages.iter().map(|m| m.content.to_string()).collect();
     assert_eq!(sent, ["p", "q", "int(r)", "imp(s)"]);
-    assert!(out.messages.iter().all(|m| m.receiver == "bob"));
+    assert!(out.messages.iter().all(|m| m.receiver.name() == "bob"));
 }
 
 #[test]
@@ -627,7 +627,7 @@ fn channel_messages_reach_subscribers_only() {
     let to = |name: &str| -> Vec<Message> {
         out.messages
             .iter()
-            .filter(|m| m.receiver == name)
+            .filter(|m| m.receiver.name() == name)
             .cloned()
             .collect()
     };

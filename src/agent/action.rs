@@ -34,6 +34,17 @@ impl Core {
                 Ok(Outcome::Done { real: true })
             }
             Act::Delete(t) => {
+                if let Some(f) = self.ms.mailbox.delete_matching(t, s) {
+                    // The message the rule matched, deleted without building it first.
+                    if self.ms.record {
+                        self.changes(vec![Event::MailDeleted {
+                            fact: f.to_string(),
+                        }]);
+                    }
+                    self.done_with(|| Term::compound("delete", vec![f]));
+                    self.check_goals()?;
+                    return Ok(Outcome::Done { real: true });
+                }
                 let u = ground(s, t, "delete")?;
                 let mut ev = Vec::new();
                 self.ms.delete(&u, &mut ev)?;
@@ -86,6 +97,8 @@ impl Core {
     /// watcher (`goal test`) observes actions.
     pub fn done_with(&mut self, action: impl FnOnce() -> Term) {
         if self.level >= TraceLevel::Changes || self.watcher.is_some() {
+            // A watcher may read the mailbox.
+            self.ms.mailbox.settle();
             let t = action();
             self.watch(Observed::Action(&t));
             if self.level >= TraceLevel::Changes {
@@ -233,6 +246,11 @@ impl Core {
 
     /// Blind commitment on the current attention set.
     pub fn check_goals(&mut self) -> Result<(), Fault> {
+        if self.ms.attention.current().goals().is_empty() {
+            return Ok(());
+        }
+        // Goals are checked against the beliefs, mailbox included.
+        self.ms.mailbox.settle();
         let mut ev = Vec::new();
         self.ms.goal_check(&mut ev)?;
         self.changes(ev);

@@ -3,6 +3,7 @@
 //! apart from rule variables.
 
 use super::kr_bridge::{load_knowledge, Knowledge};
+use super::mentions::{uses_sessions, Parts};
 use super::program::*;
 use crate::diag::{line_col, Diagnostic, Span};
 use crate::syntax::ast::{self, ExitCondition, Focus, Order};
@@ -294,6 +295,13 @@ impl<'s> Compiler<'s> {
             return Err(all);
         }
         let uses_models = uses_models(&self.blocks);
+        let uses_sessions = uses_sessions(&Parts {
+            modules: &self.modules,
+            blocks: &self.blocks,
+            specs: &self.specs,
+            knowledge: knowledge.source(),
+            conditions: &[],
+        });
         Ok(Arc::new(Program {
             file: self.file,
             source: Arc::from(self.source),
@@ -312,6 +320,7 @@ impl<'s> Compiler<'s> {
             },
             uses_newpercept: mentions_newpercept(&ast.modules),
             uses_models,
+            uses_sessions,
             channels: false,
         }))
     }
@@ -751,6 +760,14 @@ pub(crate) fn extend(
     if !c.errors.is_empty() {
         return Err(c.errors);
     }
+    let uses_sessions = prog.uses_sessions
+        || uses_sessions(&Parts {
+            modules: &c.modules,
+            blocks: &c.blocks,
+            specs: &c.specs,
+            knowledge: &[],
+            conditions: &conds,
+        });
     Ok(Extension {
         program: Arc::new(Program {
             file: prog.file.clone(),
@@ -768,6 +785,7 @@ pub(crate) fn extend(
             channels: prog.channels,
             // A test condition about other agents needs their models kept too.
             uses_models: prog.uses_models || conds.iter().any(|c| about_others(c)),
+            uses_sessions,
             names: prog.names.clone(),
         }),
         blocks,

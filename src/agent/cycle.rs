@@ -13,7 +13,7 @@ use super::program::Program;
 use super::timing::Timing;
 use super::trace::{Event, TraceLevel};
 use super::watch::{Observed, Watcher};
-use crate::term::Term;
+use crate::term::{Sym, Term};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::collections::BTreeSet;
@@ -111,6 +111,8 @@ impl Default for AgentConfig {
 /// The mutable core of an agent that actions work on.
 pub struct Core {
     pub name: String,
+    /// The agent's name interned (messages carry it).
+    pub me: Sym,
     pub ms: MentalState,
     pub rng: ChaCha8Rng,
     pub out: CycleOutput,
@@ -197,6 +199,11 @@ impl Core {
 
     /// Applies a percept batch to the percept base and records what changed.
     pub fn perceive(&mut self, percepts: &[Term], types: &PerceptTypes, keep_batch: bool) {
+        let p = &self.ms.percepts;
+        if percepts.is_empty() && p.facts().is_empty() && p.batch().is_empty() {
+            // Nothing to replace or remove: most cycles of agents without an environment.
+            return;
+        }
         let ch = self.ms.percepts.apply(percepts, types, keep_batch);
         let record = self.level >= TraceLevel::Changes;
         for p in ch.removed.iter().filter(|_| record) {
@@ -278,11 +285,15 @@ impl Agent {
         }
         ms.record = config.trace >= TraceLevel::Changes;
         ms.models.enabled = program.uses_models;
+        ms.mailbox.sessions = program
+            .uses_sessions
+            .then(crate::clamr::session::Book::default);
         let file = program.file.clone();
         let mut agent = Agent {
             program,
             core: Core {
                 name: name.to_string(),
+                me: Sym::intern(name),
                 ms,
                 rng: ChaCha8Rng::seed_from_u64(config.seed),
                 out: CycleOutput::default(),
@@ -473,6 +484,8 @@ impl Agent {
                 self.stop(StopReason::Error(e));
             }
         }
+        // Whatever stopped a combo early, no `sent/2` fact stays held past the cycle.
+        self.core.ms.mailbox.settle();
         self.collect_printed();
         let out = &self.core.out;
         self.waiting = self.stopped.is_none()

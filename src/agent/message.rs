@@ -10,7 +10,7 @@ use super::program::Receivers;
 use super::timing::CHANNEL;
 use super::trace::{Event, TraceLevel};
 use crate::syntax::ast::Mood;
-use crate::term::{well_known as wk, Subst, Term};
+use crate::term::{well_known as wk, Subst, Sym, Term};
 
 /// Wraps content in its mood: `p`, `imp(p)` or `int(p)`.
 pub fn wrap_mood(mood: Mood, content: Term) -> Term {
@@ -23,14 +23,20 @@ pub fn wrap_mood(mood: Mood, content: Term) -> Term {
 
 /// The agent names that the terms `ts` of a selector stand for under `s` (atoms, strings and
 /// lists of them); an unbound variable is an error.
-pub fn agent_names(ts: &[Term], s: &Subst) -> Result<Vec<String>, Fault> {
+pub fn agent_names(ts: &[Term], s: &Subst) -> Result<Vec<Sym>, Fault> {
+    // The usual selector, one name (`(Next).send(...)`), without building a work list.
+    if let [t] = ts {
+        if let Term::Atom(a) = s.apply(t) {
+            return Ok(if a == wk::NIL { Vec::new() } else { vec![a] });
+        }
+    }
     let mut names = Vec::new();
     let mut work: Vec<Term> = ts.iter().rev().map(|t| s.apply(t)).collect();
     while let Some(t) = work.pop() {
         match &t {
-            Term::Atom(a) if *a != wk::NIL => names.push(a.name().to_string()),
+            Term::Atom(a) if *a != wk::NIL => names.push(*a),
             Term::Atom(_) => {}
-            Term::Str(x) => names.push(x.to_string()),
+            Term::Str(x) => names.push(Sym::intern(x)),
             Term::Compound(_) if t.is_cons() => {
                 if let Some(items) = t.list_items() {
                     work.extend(items.into_iter().rev());
@@ -50,21 +56,19 @@ pub fn agent_names(ts: &[Term], s: &Subst) -> Result<Vec<String>, Fault> {
 
 impl Core {
     /// The receiver names of a selector under `s`.
-    fn receivers(&self, to: &Receivers, s: &Subst) -> Result<Vec<String>, Fault> {
-        let mut names = Vec::new();
-        match to {
-            Receivers::All => names.extend(self.known.names().iter().cloned()),
-            Receivers::AllOther => names.extend(
-                self.known
-                    .names()
-                    .iter()
-                    .filter(|n| **n != self.name)
-                    .cloned(),
-            ),
-            Receivers::SelfAgent => names.push(self.name.clone()),
-            Receivers::Agents(ts) => names = agent_names(ts, s)?,
-        }
-        Ok(names)
+    fn receivers(&self, to: &Receivers, s: &Subst) -> Result<Vec<Sym>, Fault> {
+        Ok(match to {
+            Receivers::All => self.known.syms().to_vec(),
+            Receivers::AllOther => self
+                .known
+                .syms()
+                .iter()
+                .copied()
+                .filter(|n| *n != self.me)
+                .collect(),
+            Receivers::SelfAgent => vec![self.me],
+            Receivers::Agents(ts) => agent_names(ts, s)?,
+        })
     }
 
     /// `send` / `sendonce`; with `channels`, a receiver name that is no agent is a channel.
@@ -92,21 +96,22 @@ impl Core {
         let record = self.level >= TraceLevel::Changes;
         let mut ev = Vec::new();
         for r in self.receivers(to, s)? {
-            if !self.known.contains(&r) && channels {
-                self.to_channel(&r, &wrapped, &mut ev);
+            let known = self.known.knows(r);
+            if !known && channels {
+                self.to_channel(r, &wrapped, &mut ev);
                 continue;
             }
-            if !self.known.contains(&r) {
+            if !known {
                 ev.push(Event::Warning {
                     message: format!("message {wrapped} to unknown agent {r} dropped"),
                 });
                 continue;
             }
-            let rt = Term::atom(&r);
+            let rt = Term::Atom(r);
             if once && self.ms.mailbox.has_sent(&rt, &wrapped) {
                 continue;
             }
-            self.converse(&self.name.clone(), &r, &wrapped);
+            self.converse(self.me, r, &wrapped);
             if record {
                 ev.push(Event::MessageSent {
                     to: rt.to_string(),
@@ -114,19 +119,21 @@ impl Core {
                 });
             }
             self.out.messages.push(Message {
-                sender: self.name.clone(),
+                sender: self.me,
                 receiver: r,
                 content: wrapped.clone(),
             });
             let f = sent(&rt, &wrapped);
+            // Held back while the combo runs: a `delete` of it later in the combo then costs
+            // nothing (see `Mailbox::hold_sent`).
             if record {
-                if self.ms.mailbox.insert(f.clone()) {
+                if self.ms.mailbox.hold_sent(f.clone()) {
                     ev.push(Event::MailAdded {
                         fact: f.to_string(),
                     });
                 }
             } else {
-                self.ms.mailbox.insert(f);
+                self.ms.mailbox.hold_sent(f);
             }
         }
         for e in ev {
@@ -140,18 +147,18 @@ impl Core {
 
     /// A message to channel `c`: sent to every agent marked with the channel; each keeps it
     /// only when subscribed (`timing.rs`), so the sender needs no one's subscriptions.
-    fn to_channel(&mut self, c: &str, wrapped: &Term, ev: &mut Vec<Event>) {
+    fn to_channel(&mut self, c: Sym, wrapped: &Term, ev: &mut Vec<Event>) {
         if self.level >= TraceLevel::Changes {
             ev.push(Event::MessageSent {
-                to: c.to_string(),
+                to: c.name().to_string(),
                 content: wrapped.to_string(),
             });
         }
-        let marked = Term::compound(CHANNEL, vec![Term::atom(c), wrapped.clone()]);
-        for r in self.known.names() {
+        let marked = Term::compound(CHANNEL, vec![Term::Atom(c), wrapped.clone()]);
+        for &r in self.known.syms() {
             self.out.messages.push(Message {
-                sender: self.name.clone(),
-                receiver: r.clone(),
+                sender: self.me,
+                receiver: r,
                 content: marked.clone(),
             });
         }
@@ -159,10 +166,12 @@ impl Core {
 
     /// Follows the conversation a message from `from` to `to` belongs to, keeping the
     /// `session/4` facts in the mailbox up to date (no trace events: runtime bookkeeping).
-    fn converse(&mut self, from: &str, to: &str, content: &Term) {
+    fn converse(&mut self, from: Sym, to: Sym, content: &Term) {
         use crate::clamr::session::Change;
-        let act = crate::clamr::classify(from, content);
-        let book = &mut self.ms.mailbox.sessions;
+        let Some(book) = self.ms.mailbox.sessions.as_mut() else {
+            return;
+        };
+        let act = crate::clamr::classify(from.name(), content);
         let changes = book.observe(from, to, content, &act, 0);
         for c in changes {
             let (i, old) = match c {
@@ -170,14 +179,14 @@ impl Core {
                 Change::Moved(i, old) => (i, Some(old)),
                 Change::Violation(_) => continue,
             };
-            let Some(s) = self.ms.mailbox.sessions.get(i) else {
+            let Some(s) = self.ms.mailbox.sessions.as_ref().and_then(|b| b.get(i)) else {
                 continue;
             };
-            let new = s.fact(&self.name);
+            let new = s.fact(self.me);
             let old = old.map(|state| {
                 let mut was = s.clone();
                 was.state = state;
-                was.fact(&self.name)
+                was.fact(self.me)
             });
             if let Some(f) = old {
                 self.ms.mailbox.delete(&f);
@@ -196,9 +205,9 @@ impl Core {
             let Some(content) = self.timing.accept(&m.content) else {
                 continue;
             };
-            self.ms.update_model(&m.sender, &content)?;
-            self.converse(&m.sender, &m.receiver, &content);
-            let f = received(&Term::atom(&m.sender), &content);
+            self.ms.update_model(m.sender.name(), &content)?;
+            self.converse(m.sender, m.receiver, &content);
+            let f = received(&Term::Atom(m.sender), &content);
             if record {
                 if self.ms.mailbox.insert(f.clone()) {
                     ev.push(Event::MailAdded {

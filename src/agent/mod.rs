@@ -33,6 +33,7 @@ pub mod kr_bridge;
 pub mod load;
 pub mod mailbox;
 pub mod mental_state;
+mod mentions;
 pub mod message;
 pub mod models;
 pub mod module;

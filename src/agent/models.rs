@@ -103,7 +103,8 @@ pub fn answers(
         About::SomeOther => (others(ms, me), false),
         About::Agents(ts) => {
             let ts: Vec<Term> = ts.iter().map(|t| theta.apply(t)).collect();
-            (agent_names(&ts, theta)?, true)
+            let names = agent_names(&ts, theta)?;
+            (names.iter().map(|n| n.name().to_string()).collect(), true)
         }
     };
     let mut result: Option<Vec<(Term, Subst)>> = None;

@@ -324,6 +324,7 @@ impl Core {
                     };
                     if c.next >= actions.len() {
                         let acted = c.acted;
+                        self.ms.mailbox.settle();
                         stack.pop();
                         propagate(stack, acted);
                         continue;
@@ -331,6 +332,10 @@ impl Core {
                     let a = &actions[c.next];
                     c.next += 1;
                     let loc = Some((c.block, c.rule, a.line));
+                    // Only sends and deletes run with `sent/2` facts held back.
+                    if !matches!(a.kind, Act::Send { .. } | Act::Delete(_)) {
+                        self.ms.mailbox.settle();
+                    }
                     match &a.kind {
                         Act::ExitModule => {
                             self.event(Event::ActionPerformed {
@@ -356,7 +361,10 @@ impl Core {
                             let outcome = self
                                 .perform(prog, act, &s)
                                 .and_then(|o| self.check_sizes().map(|_| o))
-                                .map_err(|e| self.error(prog, loc, e))?;
+                                .map_err(|e| {
+                                    self.ms.mailbox.settle();
+                                    self.error(prog, loc, e)
+                                })?;
                             for _ in sent..self.out.env_actions.len() {
                                 let at = self.error(prog, loc, Fault::new(""));
                                 self.out.env_sites.push(at);

@@ -190,6 +190,9 @@ pub struct Program {
     pub uses_newpercept: bool,
     /// Some condition queries other agents' mental models (so messages must update them).
     pub uses_models: bool,
+    /// Something in the program can see `session/4` facts (so the agent follows its own
+    /// conversations; see `mentions.rs`).
+    pub uses_sessions: bool,
     /// A modular program: a send to a name that is no agent goes to that channel's subscribers
     /// (a 2014 program drops it with a warning).
     pub channels: bool,

@@ -6,6 +6,7 @@
 pub mod bufenv;
 pub mod cpu;
 pub mod idle;
+pub mod instructions;
 pub mod params;
 pub mod reason;
 pub mod report;
@@ -98,7 +99,7 @@ pub fn run(name: &str, params: &Params, workers: usize) -> Result<Report, String
 fn run_named(name: &str, params: &Params, workers: usize) -> Result<Report, String> {
     match name {
         "ring1" => ring::run("ring1", params, workers, 1),
-        "ring50" => ring::run("ring50", params, workers, 50),
+        "ring50" => ring::ring50(params, workers),
         "fib" => reason::fib(params),
         "knowledge" => reason::knowledge(params),
         "percepts" => bufenv::run(params),

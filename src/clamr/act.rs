@@ -51,6 +51,18 @@ impl SpeechAct {
         SpeechAct::ALL.into_iter().find(|s| s.code() == c)
     }
 
+    /// [`SpeechAct::name`] interned.
+    pub fn sym(self) -> crate::term::Sym {
+        static SYMS: std::sync::OnceLock<Vec<crate::term::Sym>> = std::sync::OnceLock::new();
+        let all = SYMS.get_or_init(|| {
+            SpeechAct::ALL
+                .iter()
+                .map(|a| crate::term::Sym::intern(a.name()))
+                .collect()
+        });
+        all[SpeechAct::ALL.iter().position(|a| *a == self).unwrap_or(0)]
+    }
+
     /// The lower-case name agents see in `session/4` (`request`, `requestWhen`, ...).
     pub fn name(self) -> &'static str {
         match self {

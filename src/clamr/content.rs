@@ -3,7 +3,8 @@
 //! `outOfRange(Lo, Hi)`; and constraints of time `when(A, T)` and location `where(A, Place)`.
 //! Forms are checked when a message is sent, put into English, and summed up in a frame's CL byte.
 
-use crate::term::{Style, Term};
+use crate::term::{Style, Sym, Term};
+use std::sync::OnceLock;
 
 /// The complex-act types with their 4-bit code in the CL byte (0: a simple act).
 pub const FORMS: &[(&str, usize, u8)] = &[
@@ -45,9 +46,31 @@ fn as_f64(t: &Term) -> Option<f64> {
     }
 }
 
+/// The functors [`check_node`] looks at, interned: every other node of a message is passed
+/// by comparing integers (sending checks every message).
+fn checked(f: Sym) -> bool {
+    static NAMES: OnceLock<Vec<Sym>> = OnceLock::new();
+    NAMES
+        .get_or_init(|| {
+            [
+                "greater",
+                "smaller",
+                "range",
+                "outOfRange",
+                "sequence",
+                "when",
+                "where",
+            ]
+            .iter()
+            .map(|n| Sym::intern(n))
+            .collect()
+        })
+        .contains(&f)
+}
+
 /// Checks one node; `Err` says what is wrong with it and how to write it.
 fn check_node(t: &Term) -> Result<(), String> {
-    let Some((f, n)) = t.functor() else {
+    let Some((f, n)) = t.functor().filter(|(f, _)| checked(*f)) else {
         return Ok(());
     };
     let a = t.args();
@@ -104,8 +127,9 @@ fn check_node(t: &Term) -> Result<(), String> {
 /// Checks the content-language forms anywhere in `content` and the acknowledgement form at its
 /// top; `Err` says what is wrong, for the sending agent.
 pub fn validate(content: &Term) -> Result<(), String> {
+    static ACK: OnceLock<Sym> = OnceLock::new();
     if let Some((f, n @ (1 | 2))) = content.functor() {
-        if f.name() == "ack" {
+        if f == *ACK.get_or_init(|| Sym::intern("ack")) {
             let first = &content.args()[0];
             let known = first
                 .functor()

@@ -162,7 +162,7 @@ impl Ring {
 
     /// Sends one message from the holder `h`: frames out and back in, or lost.
     fn transmit(&mut self, h: usize, m: Message, carried: &mut Carried) {
-        let Some(&r) = self.index.get(&m.receiver) else {
+        let Some(&r) = self.index.get(m.receiver.name()) else {
             // Unknown receivers are the router's to report.
             carried.arrived.push(m);
             return;
@@ -171,7 +171,7 @@ impl Ring {
             carried.lost.push(m);
             return;
         }
-        let frames = match encode_message(h as u8 + 1, r as u8 + 1, &m.sender, &m.content) {
+        let frames = match encode_message(h as u8 + 1, r as u8 + 1, m.sender.name(), &m.content) {
             Ok(f) => f,
             Err(e) => {
                 self.notes.push(format!(
@@ -229,15 +229,15 @@ impl Ring {
         let partner = self.session.take();
         let (send, keep): (Vec<Message>, Vec<Message>) = self.queues[h]
             .drain(..)
-            .partition(|m| partner.is_none_or(|p| m.receiver == self.names[p]));
+            .partition(|m| partner.is_none_or(|p| m.receiver.name() == self.names[p]));
         self.queues[h] = keep.into();
         let mut opened = None;
         for m in send {
-            let act = classify(&m.sender, &m.content);
+            let act = classify(m.sender.name(), &m.content);
             if partner.is_none() && !matches!(act.sat, SpeechAct::Inform | SpeechAct::Acknowledge) {
                 opened = self
                     .index
-                    .get(&m.receiver)
+                    .get(m.receiver.name())
                     .copied()
                     .filter(|&r| !self.down[r]);
             }
@@ -260,7 +260,7 @@ impl Transport for Ring {
         let mut carried = Carried::default();
         self.fail_due(tick, &mut carried.lost);
         for m in sent {
-            match self.index.get(&m.sender).copied() {
+            match self.index.get(m.sender.name()).copied() {
                 Some(s) if !self.down[s] && !self.broken => self.queues[s].push_back(m),
                 _ => carried.lost.push(m),
             }

@@ -5,9 +5,13 @@
 //! of what it sent and received (the `session/4` facts).
 
 use super::act::{Act, Answer, SpeechAct};
-use crate::term::Term;
+use crate::term::{Sym, Term};
 use serde::Serialize;
 use std::collections::BTreeMap;
+use std::sync::OnceLock;
+
+/// The name of the facts `session(Id, With, Act, State)` an agent sees its conversations by.
+pub const FACT: &str = "session";
 
 /// Where a conversation stands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -31,6 +35,21 @@ pub enum State {
 }
 
 impl State {
+    /// The name agents see in `session/4`, interned.
+    fn sym(self) -> Sym {
+        static SYMS: OnceLock<Vec<Sym>> = OnceLock::new();
+        let all = [
+            State::Open,
+            State::Accepted,
+            State::Started,
+            State::Completed,
+            State::Refused,
+            State::Failed,
+            State::Abandoned,
+        ];
+        SYMS.get_or_init(|| all.iter().map(|s| Sym::intern(s.name())).collect())[self as usize]
+    }
+
     /// The name agents see in `session/4`.
     pub fn name(self) -> &'static str {
         match self {
@@ -53,13 +72,13 @@ impl State {
 /// One conversation.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Session {
-    /// `Initiator-N`: the initiator's N-th conversation with this partner (both sides count the
-    /// same way, so both see the same id).
-    pub id: String,
+    /// N of the id `Initiator-N`: the initiator's N-th conversation with this partner (both
+    /// sides count the same way, so both see the same id).
+    pub number: u64,
     /// Who opened it.
-    pub initiator: String,
+    pub initiator: Sym,
     /// Who it was opened with.
-    pub partner: String,
+    pub partner: Sym,
     /// The opening act.
     pub kind: SpeechAct,
     /// Where it stands.
@@ -70,7 +89,8 @@ pub struct Session {
     pub answered: Option<u64>,
     /// Tick it closed.
     pub closed: Option<u64>,
-    /// The opening message (content text).
+    /// The opening message (content text; empty in an agent's own book, which names no
+    /// messages).
     pub opening: String,
     /// The message that closed it, with its tick.
     pub closing: Option<(String, u64)>,
@@ -79,26 +99,31 @@ pub struct Session {
 }
 
 impl Session {
+    /// The id `Initiator-N`.
+    pub fn id(&self) -> String {
+        format!("{}-{}", self.initiator, self.number)
+    }
+
     /// The `session(Id, With, Act, State)` fact as agent `me` sees it.
-    pub fn fact(&self, me: &str) -> Term {
+    pub fn fact(&self, me: Sym) -> Term {
+        static SESSION: OnceLock<Sym> = OnceLock::new();
         let with = if self.initiator == me {
-            &self.partner
+            self.partner
         } else {
-            &self.initiator
+            self.initiator
         };
-        let n = self
-            .id
-            .rsplit_once('-')
-            .and_then(|(_, n)| n.parse::<i64>().ok())
-            .unwrap_or(0);
-        let id = Term::compound("-", vec![Term::atom(&self.initiator), Term::Int(n)]);
+        let n = i64::try_from(self.number).unwrap_or(i64::MAX);
+        let id = Term::compound(
+            crate::term::well_known::MINUS,
+            vec![Term::Atom(self.initiator), Term::Int(n)],
+        );
         Term::compound(
-            "session",
+            *SESSION.get_or_init(|| Sym::intern(FACT)),
             vec![
                 id,
-                Term::atom(with),
-                Term::atom(self.kind.name()),
-                Term::atom(self.state.name()),
+                Term::Atom(with),
+                Term::Atom(self.kind.sym()),
+                Term::Atom(self.state.sym()),
             ],
         )
     }
@@ -146,19 +171,21 @@ pub struct ResponseTicks {
 #[derive(Clone, Debug, Default)]
 pub struct Book {
     sessions: Vec<Session>,
-    /// Open sessions per (initiator, partner), oldest first.
-    open: BTreeMap<(String, String), Vec<usize>>,
+    /// Open sessions per (initiator, partner), oldest first. Keyed by symbol: only looked
+    /// up, never iterated in key order.
+    open: BTreeMap<(Sym, Sym), Vec<usize>>,
     /// Sessions opened per (initiator, partner), for ids.
-    counts: BTreeMap<(String, String), u64>,
+    counts: BTreeMap<(Sym, Sym), u64>,
     /// The last message per (sender, receiver), to name it in a violation.
-    last: BTreeMap<(String, String), (String, u64)>,
-    /// Track Inform sessions (the runtime does; an agent's own book does not list them).
+    last: BTreeMap<(Sym, Sym), (String, u64)>,
+    /// Track Inform sessions and name messages (the runtime does; an agent's own book lists
+    /// no informs and keeps no message texts).
     pub informs: bool,
     violations: u64,
 }
 
-fn key(a: &str, b: &str) -> (String, String) {
-    (a.to_string(), b.to_string())
+fn key(a: Sym, b: Sym) -> (Sym, Sym) {
+    (a, b)
 }
 
 impl Book {
@@ -183,8 +210,8 @@ impl Book {
     /// Follows message `content` (read as `act`) from `from` to `to` at `tick`.
     pub fn observe(
         &mut self,
-        from: &str,
-        to: &str,
+        from: Sym,
+        to: Sym,
         content: &Term,
         act: &Act,
         tick: u64,
@@ -194,7 +221,13 @@ impl Book {
             // An agent's own book: an Inform matters only as the answer to an open query.
             return Vec::new();
         }
-        let text = content.to_string();
+        // Texts name messages in the runtime's trace and warnings; an agent's book shows
+        // neither, and writing every message out is most of what following it would cost.
+        let text = if self.informs {
+            content.to_string()
+        } else {
+            String::new()
+        };
         let change = if let Some(answer) = act.answer {
             self.answer(from, to, answer, &text, tick)
         } else if act.signal {
@@ -250,14 +283,14 @@ impl Book {
             .collect()
     }
 
-    fn open(&mut self, from: &str, to: &str, kind: SpeechAct, text: &str, tick: u64) -> Change {
+    fn open(&mut self, from: Sym, to: Sym, kind: SpeechAct, text: &str, tick: u64) -> Change {
         let n = self.counts.entry(key(from, to)).or_insert(0);
         *n += 1;
         let i = self.sessions.len();
         self.sessions.push(Session {
-            id: format!("{from}-{n}"),
-            initiator: from.to_string(),
-            partner: to.to_string(),
+            number: *n,
+            initiator: from,
+            partner: to,
             kind,
             state: State::Open,
             opened: tick,
@@ -272,12 +305,7 @@ impl Book {
     }
 
     /// The oldest open session from `initiator` to `partner` that `pred` accepts.
-    fn find(
-        &self,
-        initiator: &str,
-        partner: &str,
-        pred: impl Fn(&Session) -> bool,
-    ) -> Option<usize> {
+    fn find(&self, initiator: Sym, partner: Sym, pred: impl Fn(&Session) -> bool) -> Option<usize> {
         self.open
             .get(&key(initiator, partner))?
             .iter()
@@ -293,7 +321,7 @@ impl Book {
         if to.closed() {
             s.closed = Some(tick);
             s.closing = Some((text.to_string(), tick));
-            let k = key(&s.initiator, &s.partner);
+            let k = key(s.initiator, s.partner);
             if let Some(v) = self.open.get_mut(&k) {
                 v.retain(|&j| j != i);
                 if v.is_empty() {
@@ -305,7 +333,7 @@ impl Book {
     }
 
     /// An acknowledgement from `from` (the partner) to `to` (the initiator).
-    fn answer(&mut self, from: &str, to: &str, a: Answer, text: &str, tick: u64) -> Option<Change> {
+    fn answer(&mut self, from: Sym, to: Sym, a: Answer, text: &str, tick: u64) -> Option<Change> {
         use SpeechAct::*;
         let fits = |s: &Session| match (a, s.kind, s.state) {
             (Answer::Ok, Request | RequestWhen | Query, State::Open) => true,
@@ -339,7 +367,7 @@ impl Book {
     }
 
     /// The start signal of a RequestWhen, from the requester `from` to `to`.
-    fn signal(&mut self, from: &str, to: &str, text: &str, tick: u64) -> Option<Change> {
+    fn signal(&mut self, from: Sym, to: Sym, text: &str, tick: u64) -> Option<Change> {
         let waiting = |s: &Session| {
             s.kind == SpeechAct::RequestWhen && !s.state.closed() && s.state != State::Started
         };
@@ -356,7 +384,7 @@ impl Book {
         }
     }
 
-    fn violation(&mut self, from: &str, to: &str, a: Answer, text: &str, tick: u64) -> Change {
+    fn violation(&mut self, from: Sym, to: Sym, a: Answer, text: &str, tick: u64) -> Change {
         self.violations += 1;
         let answerable = |k: SpeechAct| match a {
             Answer::Done | Answer::Failed | Answer::Status => {
@@ -388,7 +416,7 @@ impl Book {
         let why = if let Some(s) = waiting_signal {
             format!(
                 "session {} ({} {}, tick {}) has not had its start signal",
-                s.id,
+                s.id(),
                 s.kind.name(),
                 s.opening,
                 s.opened
@@ -397,7 +425,7 @@ impl Book {
             let (by, at) = s.closing.clone().unwrap_or_default();
             format!(
                 "double answer: session {} ({} {}) was already answered by {by} (tick {at})",
-                s.id,
+                s.id(),
                 s.kind.name(),
                 s.opening
             )
@@ -419,7 +447,7 @@ impl Book {
     }
 
     /// "; the last message from `a` to `b` was ..." when there was one.
-    fn earlier(&self, a: &str, b: &str) -> String {
+    fn earlier(&self, a: Sym, b: Sym) -> String {
         match self.last.get(&key(a, b)) {
             Some((m, t)) => format!("; the last message from {a} to {b} was {m} (tick {t})"),
             None => format!("; {a} never sent {b} a message"),
@@ -467,7 +495,7 @@ mod tests {
             .term(text, 0)
             .expect("term")
             .term;
-        b.observe(from, to, &t, &classify(from, &t), tick)
+        b.observe(from.into(), to.into(), &t, &classify(from, &t), tick)
     }
 
     fn state(b: &Book, i: usize) -> State {
@@ -487,7 +515,7 @@ mod tests {
         assert_eq!(state(&b, 0), State::Completed);
         let s = &b.sessions()[0];
         assert_eq!(
-            (s.id.as_str(), s.opened, s.answered, s.closed),
+            (s.id().as_str(), s.opened, s.answered, s.closed),
             ("r2-1", 1, Some(2), Some(4))
         );
         let c = say(&mut b, "r3", "r2", "ack(done, 25)", 5);

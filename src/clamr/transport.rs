@@ -9,6 +9,7 @@ use super::session::{Book, Change, SessionStats};
 use crate::agent::Message;
 use crate::mas::routing::{InProcess, Transport};
 use crate::mas::trace::TraceWriter;
+use crate::term::Sym;
 use serde_json::{json, Value};
 use std::collections::{BTreeMap, VecDeque};
 
@@ -62,7 +63,7 @@ pub struct Comm {
     book: Book,
     trace_sessions: bool,
     /// Sessions opened by a message on its way: (from, to, content text) -> sessions.
-    pending: BTreeMap<(String, String, String), VecDeque<usize>>,
+    pending: BTreeMap<(Sym, Sym, String), VecDeque<usize>>,
     lost_warned: bool,
 }
 
@@ -103,15 +104,15 @@ impl Comm {
         warn: Warn<'_>,
     ) -> (Vec<Message>, Vec<Message>) {
         for m in &sent {
-            let act = classify(&m.sender, &m.content);
+            let act = classify(m.sender.name(), &m.content);
             let changes = self
                 .book
-                .observe(&m.sender, &m.receiver, &m.content, &act, tick);
+                .observe(m.sender, m.receiver, &m.content, &act, tick);
             for c in &changes {
                 if let Change::Opened(i) = c {
                     let text = m.content.to_string();
                     self.pending
-                        .entry((m.sender.clone(), m.receiver.clone(), text))
+                        .entry((m.sender, m.receiver, text))
                         .or_default()
                         .push_back(*i);
                 }
@@ -131,7 +132,7 @@ impl Comm {
             .map(|m| (m, true))
             .chain(carried.lost.iter().map(|m| (m, false)))
         {
-            let key = (m.sender.clone(), m.receiver.clone(), m.content.to_string());
+            let key = (m.sender, m.receiver, m.content.to_string());
             let Some(i) = self.pending.get_mut(&key).and_then(|q| q.pop_front()) else {
                 continue;
             };
@@ -197,10 +198,10 @@ impl Comm {
         };
         json!({
             "event": event,
-            "id": s.id,
+            "id": s.id(),
             "act": s.kind.name(),
-            "initiator": s.initiator,
-            "partner": s.partner,
+            "initiator": s.initiator.name(),
+            "partner": s.partner.name(),
             "state": s.state.name(),
             "message": s.latest,
             "opened": s.opened,

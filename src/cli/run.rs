@@ -142,7 +142,7 @@ impl Observer for Console {
     fn message(&mut self, round: u64, m: &Message, delivered: bool) {
         if self.verbose {
             self.clear();
-            let r = vocabulary::read(&m.sender, &m.content);
+            let r = vocabulary::read(m.sender.name(), &m.content);
             let english = r.english.map(|e| format!(" \"{e}\"")).unwrap_or_default();
             let lost = if delivered { "" } else { " (not delivered)" };
             eprintln!(

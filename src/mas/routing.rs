@@ -3,40 +3,39 @@
 //! routing sits a [`Transport`]: in-process delivery by default, or a simulated network
 //! (`clamr::ring`) that may delay or lose messages.
 
+use crate::agent::directory::{position, sym_table};
 use crate::agent::Message;
-use std::collections::BTreeMap;
+use crate::term::Sym;
 
-/// Routes messages between the agents of a system (index = position in name order).
+/// Routes messages between the agents of a system (index = position in name order). Agents
+/// are found by their interned names: a search over integers per message, no text.
 #[derive(Clone, Debug)]
 pub struct Router {
-    index: BTreeMap<String, usize>,
+    index: Vec<(u32, u32)>,
 }
 
 impl Router {
     /// A router for agents `names` (index = position).
     pub fn new(names: &[String]) -> Router {
+        let syms: Vec<Sym> = names.iter().map(|n| Sym::intern(n)).collect();
         Router {
-            index: names
-                .iter()
-                .enumerate()
-                .map(|(i, n)| (n.clone(), i))
-                .collect(),
+            index: sym_table(&syms),
         }
     }
 
     /// The index of agent `name`.
-    pub fn index(&self, name: &str) -> Option<usize> {
-        self.index.get(name).copied()
+    pub fn index(&self, name: Sym) -> Option<usize> {
+        position(&self.index, name)
     }
 
     /// Appends `sent` (each sender's messages in sending order) to the receivers' inboxes, in
     /// (sender name, sequence) order; returns the messages whose receiver is unknown.
     pub fn route(&self, mut sent: Vec<Message>, inbox: &mut [Vec<Message>]) -> Vec<Message> {
-        // Stable: keeps each sender's own sequence.
-        sent.sort_by(|a, b| a.sender.cmp(&b.sender));
+        // Stable: keeps each sender's own sequence. By name, never by symbol id.
+        sent.sort_by(|a, b| a.sender.name().cmp(b.sender.name()));
         let mut unknown = Vec::new();
         for m in sent {
-            match self.index(&m.receiver).and_then(|i| inbox.get_mut(i)) {
+            match self.index(m.receiver).and_then(|i| inbox.get_mut(i)) {
                 Some(b) => b.push(m),
                 None => unknown.push(m),
             }

@@ -329,8 +329,11 @@ impl<'a> Setup<'a> {
                     mark(&mut self.ready, s, i);
                 }
             }
-            // Messages: (sender, sequence) order; a stable sort keeps each sender's sequence.
-            sent.sort_by(|a, b| a.sender.cmp(&b.sender));
+            // Messages are in (sender, sequence) order already: outputs come in slot order,
+            // slots are in name order (`start.rs`), and each agent sends in sequence.
+            debug_assert!(sent
+                .windows(2)
+                .all(|w| w[0].sender.name() <= w[1].sender.name()));
             messages += sent.len() as u64;
             if let Some(c) = self.comm.as_mut() {
                 let mut warn = |w: &str| obs.warning(w);
@@ -344,7 +347,7 @@ impl<'a> Setup<'a> {
                 sent = arrived;
             }
             for m in sent {
-                let receiver = self.router.index(&m.receiver);
+                let receiver = self.router.index(m.receiver);
                 let full = receiver.is_some_and(|j| self.mailbox_full(j, round, tick, obs));
                 let delivered = receiver.is_some() && !full;
                 if let Some(t) = trace.as_mut() {

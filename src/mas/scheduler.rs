@@ -2,13 +2,41 @@
 //! collects the outputs, returned in agent-index order so the result never depends on thread
 //! timing. The calling thread runs the first share itself, and rounds with very few cycles
 //! (a token ring moves one agent per round) run entirely on it: waking a thread costs more
-//! than such a cycle.
+//! than such a cycle. Between rounds both sides wait by spinning briefly before they block:
+//! rounds are often shorter than putting a thread to sleep and waking it again.
+//!
+//! Whether sharing a round pays depends on the machine: on a busy one a worker thread may wait
+//! milliseconds for a core while the round's cycles take a fraction of that. The pool measures
+//! the time per cycle of both ways and shares a round only while sharing is the faster one,
+//! trying the other way now and then. Only timing depends on this choice, never a result.
 
 use crate::agent::{Agent, CycleOutput, Message};
 use crate::term::Term;
-use crossbeam_channel::{unbounded, Receiver, Sender};
+use crossbeam_channel::{unbounded, Receiver, RecvError, Sender, TryRecvError};
+use std::cell::Cell;
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+/// How long a thread waiting for the other side of a round spins before it blocks.
+const SPIN: Duration = Duration::from_micros(50);
+
+/// The next value on `rx`: polled for up to [`SPIN`], then waited for asleep.
+fn wait<T>(rx: &Receiver<T>) -> Result<T, RecvError> {
+    let start = Instant::now();
+    loop {
+        for _ in 0..64 {
+            match rx.try_recv() {
+                Ok(v) => return Ok(v),
+                Err(TryRecvError::Disconnected) => return Err(RecvError),
+                Err(TryRecvError::Empty) => std::hint::spin_loop(),
+            }
+        }
+        if start.elapsed() >= SPIN {
+            return rx.recv();
+        }
+    }
+}
 
 /// One cycle to run: agent index, percept batch, incoming messages.
 pub type Job = (usize, Vec<Term>, Vec<Message>);
@@ -31,10 +59,53 @@ struct Worker {
     join: Option<JoinHandle<()>>,
 }
 
+/// Rounds between two tries of the way of running rounds that is currently the slower one.
+const EXPLORE_EVERY: u32 = 128;
+
+/// Weight of the newest round in the running mean of the time per cycle.
+const NEWEST: f64 = 0.1;
+
+/// The running mean time per cycle (nanoseconds) of rounds run on the calling thread alone
+/// and of rounds shared with the workers; 0 until measured.
+#[derive(Default)]
+struct Costs {
+    inline: Cell<f64>,
+    shared: Cell<f64>,
+    /// Rounds that could be shared since the slower way was last tried.
+    since_try: Cell<u32>,
+}
+
+impl Costs {
+    /// True when the next round of enough cycles should be shared.
+    fn share(&self) -> bool {
+        let (i, s) = (self.inline.get(), self.shared.get());
+        if i == 0.0 || s == 0.0 {
+            // Measure both ways first.
+            return s == 0.0 && i > 0.0;
+        }
+        let n = self.since_try.get() + 1;
+        self.since_try.set(n % EXPLORE_EVERY);
+        (s < i) != (n == EXPLORE_EVERY)
+    }
+
+    /// Takes the time `took` of a round of `cycles` cycles run one way into its mean.
+    fn record(&self, shared: bool, took: Duration, cycles: usize) {
+        let per = took.as_nanos() as f64 / cycles.max(1) as f64;
+        let mean = if shared { &self.shared } else { &self.inline };
+        let old = mean.get();
+        mean.set(if old == 0.0 {
+            per
+        } else {
+            old + NEWEST * (per - old)
+        });
+    }
+}
+
 /// A pool of threads running agent cycles.
 pub struct Pool {
     agents: Agents,
     workers: Vec<Worker>,
+    costs: Costs,
 }
 
 /// Why the pool could not run a round.
@@ -86,6 +157,7 @@ impl Pool {
         Ok(Pool {
             agents,
             workers: ws,
+            costs: Costs::default(),
         })
     }
 
@@ -113,8 +185,14 @@ impl Pool {
         clock: Option<f64>,
     ) -> Result<Vec<(usize, CycleOutput)>, PoolError> {
         let mut out = Vec::with_capacity(jobs.len());
-        if jobs.len() < INLINE_BELOW || self.workers.is_empty() {
+        let cycles = jobs.len();
+        let shareable = cycles >= INLINE_BELOW && !self.workers.is_empty();
+        let start = Instant::now();
+        if !shareable || !self.costs.share() {
             step(&self.agents, (clock, jobs), &mut out)?;
+            if shareable {
+                self.costs.record(false, start.elapsed(), cycles);
+            }
             out.sort_by_key(|(i, _)| *i);
             return Ok(out);
         }
@@ -136,13 +214,12 @@ impl Pool {
         }
         let mine = step(&self.agents, (clock, jobs), &mut out);
         for w in busy {
-            let done = self.workers[w]
-                .rx
-                .recv()
+            let done = wait(&self.workers[w].rx)
                 .map_err(|_| PoolError("a worker thread stopped (panic in an agent?)".into()))?;
             out.extend(done);
         }
         mine?;
+        self.costs.record(true, start.elapsed(), cycles);
         out.sort_by_key(|(i, _)| *i);
         Ok(out)
     }
@@ -164,12 +241,36 @@ impl Drop for Pool {
 }
 
 fn work(agents: Agents, rx: Receiver<Share>, tx: Sender<Done>) {
-    while let Ok(jobs) = rx.recv() {
+    while let Ok(jobs) = wait(&rx) {
         let mut done = Vec::with_capacity(jobs.1.len());
         // An error (unknown index, poisoned lock) ends this thread; the caller then reports
         // that a worker stopped.
         if step(&agents, jobs, &mut done).is_err() || tx.send(done).is_err() {
             break;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rounds_are_shared_only_while_sharing_is_faster() {
+        let c = Costs::default();
+        // Both ways are measured first: one round alone, then one shared.
+        assert!(!c.share());
+        c.record(false, Duration::from_micros(100), 10);
+        assert!(c.share());
+        c.record(true, Duration::from_micros(400), 10);
+        // Sharing is slower: rounds run alone, but sharing is tried again now and then.
+        let shared: Vec<u32> = (1..=2 * EXPLORE_EVERY).filter(|_| c.share()).collect();
+        assert_eq!(shared.len(), 2);
+        // Once sharing has become the faster way, it is the one taken.
+        for _ in 0..40 {
+            c.record(true, Duration::from_micros(20), 10);
+        }
+        let alone = (1..=EXPLORE_EVERY).filter(|_| !c.share()).count();
+        assert_eq!(alone, 1);
     }
 }

@@ -210,13 +210,13 @@ impl TraceWriter {
 
     /// A message routed to its receiver (delivered at the next round).
     pub fn message(&mut self, round: u64, tick: u64, m: &Message, delivered: bool) {
-        let r = vocabulary::read(&m.sender, &m.content);
+        let r = vocabulary::read(m.sender.name(), &m.content);
         self.line(json!({
             "type": "message",
             "round": round,
             "tick": tick,
-            "from": m.sender,
-            "to": m.receiver,
+            "from": m.sender.name(),
+            "to": m.receiver.name(),
             "content": r.logical_form,
             "act": r.act,
             "english": r.english,
