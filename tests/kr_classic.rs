@@ -556,3 +556,36 @@ fn aggregate_groups_by_free_variables_like_bagof() {
         ["B=[]"]
     );
 }
+
+/// `aggregate/4` counts each discriminator-item pair once (`setof` of the pairs) and groups by
+/// the goal's other free variables.
+#[test]
+fn aggregate_with_a_discriminator_counts_distinct_pairs() {
+    let q = |query: &str, vars: &[&str]| scores(query, vars);
+    // cat's two scores are two distinct pairs; the discriminator P alone counts persons.
+    assert_eq!(q("aggregate(count, P, S^score(P, S), C)", &["C"]), ["C=3"]);
+    assert_eq!(
+        q("aggregate(sum(S), P, score(P, S), Sum)", &["Sum"]),
+        ["Sum=13"]
+    );
+    assert_eq!(
+        q(
+            "aggregate(sum(S), P, team(T, P)^score(P, S), Sum)",
+            &["Sum"]
+        ),
+        ["Sum=13"]
+    );
+    assert_eq!(
+        q(
+            "aggregate(count, P, S^(team(T, P), score(P, S)), C)",
+            &["T", "C"]
+        ),
+        ["T=a C=2", "T=b C=1"]
+    );
+    assert_eq!(q("aggregate(max(S), P, score(P, S), M)", &["M"]), ["M=5"]);
+    assert_eq!(
+        q("aggregate(bag(P), S, score(P, S), B)", &["B"]),
+        ["B=[cat,ann,cat,bob]"]
+    );
+    assert!(q("aggregate(count, P, score(P, nothing), C)", &["C"]).is_empty());
+}
