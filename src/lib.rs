@@ -4,6 +4,7 @@
 //! for Teams (`bw4t`) and blocks world (`blocksworld`) environments. See ARCHITECTURE.md for a map.
 
 pub mod agent;
+pub mod alloc;
 pub mod bench;
 pub mod blocksworld;
 pub mod bw4t;
@@ -19,3 +20,7 @@ pub mod term;
 pub mod testing;
 pub mod view;
 pub mod why;
+
+/// Small blocks from mimalloc, large ones from the system allocator (see [`alloc`]).
+#[global_allocator]
+static GLOBAL: alloc::Hybrid = alloc::Hybrid;

@@ -419,3 +419,173 @@ fn goal_facts_join_knowledge_clauses_of_the_same_predicate() {
         )
         .unwrap());
 }
+
+/// A query run with a substitution (`query_upto_in`) answers as the query with the
+/// substitution applied: same answers, same order, same names for unbound variables, and no
+/// bindings for the variables the substitution gave.
+#[test]
+fn a_query_under_a_substitution_answers_as_the_applied_query() {
+    let kn = load(&format!(
+        "{NREV}\npair(X, Y) :- member(X, [1,2,3]), Y = f(X, _).\n"
+    ));
+    let mut beliefs = FactBase::new();
+    for f in ["fibv(1, 1)", "fibv(2, 1)", "fibv(3, 2)", "at(r1)"] {
+        beliefs.insert(read(f));
+    }
+    let bases = [&beliefs];
+    let view = View::beliefs(&kn, &bases);
+    let mut env = goal::term::Subst::new();
+    env.bind(goal::term::Sym::intern("N"), read("3"));
+    env.bind(goal::term::Sym::intern("L"), read("[a, b, c]"));
+    env.bind(goal::term::Sym::intern("Unused"), read("g(h)"));
+    for q in [
+        "N1 is N - 1, N2 is N - 2, fibv(N1, A), fibv(N2, B), V is A + B",
+        "nrev(L, R), member(X, R)",
+        "pair(X, Y), X < N",
+        "N < 2",
+        "fibv(N, V)",
+        "X = N, Y = _",
+    ] {
+        let q = read(q);
+        let mut e1 = NativeEngine::new(1);
+        let applied = e1.query_upto(&view, &env.apply(&q), usize::MAX).unwrap();
+        let mut e2 = NativeEngine::new(1);
+        let direct = e2
+            .query_upto_in(&view, &q, &env, usize::MAX)
+            .expect("ground substitution")
+            .unwrap();
+        assert_eq!(direct, applied, "{q}");
+        for a in &direct.0 {
+            for v in ["N", "L", "Unused"] {
+                assert!(
+                    a.get(goal::term::Sym::intern(v)).is_none(),
+                    "{q}: {v} bound"
+                );
+            }
+        }
+    }
+    // Stopping at `cap` is reported alike.
+    let q = read("member(X, L)");
+    let mut e = NativeEngine::new(1);
+    let (two, cut) = e.query_upto_in(&view, &q, &env, 2).unwrap().unwrap();
+    assert_eq!((two.len(), cut), (2, true));
+    // A substitution binding a variable to a non-ground term is refused (the caller applies it).
+    let mut open = goal::term::Subst::new();
+    open.bind(goal::term::Sym::intern("N"), read("f(_)"));
+    assert!(e.query_upto_in(&view, &q, &open, 2).is_none());
+}
+
+/// The answers of `query` over the `score/2` beliefs below, each as `Var=value` pairs in
+/// the order given by `vars`.
+fn scores(query: &str, vars: &[&str]) -> Vec<String> {
+    let kn = load("team(a, ann). team(a, bob). team(b, cat).\n");
+    let mut beliefs = FactBase::new();
+    for f in [
+        "score(ann, 3)",
+        "score(bob, 5)",
+        "score(cat, 4)",
+        "score(cat, 1)",
+    ] {
+        beliefs.insert(read(f));
+    }
+    let bases = [&beliefs];
+    let view = View::beliefs(&kn, &bases);
+    let mut e = NativeEngine::new(0);
+    let answers = e
+        .query(&view, &read(query))
+        .unwrap_or_else(|err| panic!("{query}: {err}"));
+    answers
+        .iter()
+        .map(|a| {
+            vars.iter()
+                .map(|v| format!("{v}={}", a.get(goal::term::Sym::intern(v)).unwrap()))
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .collect()
+}
+
+/// `aggregate/3` has bagof semantics: free variables of the goal group the answers (one
+/// answer per group, groups in standard order), `V^` makes a variable local, and a goal
+/// without answers makes it fail (where `aggregate_all/3` answers 0 or []).
+#[test]
+fn aggregate_groups_by_free_variables_like_bagof() {
+    let q = |query: &str, vars: &[&str]| scores(query, vars);
+    assert_eq!(q("aggregate(count, P^S^score(P, S), C)", &["C"]), ["C=4"]);
+    assert_eq!(
+        q("aggregate(count, S^score(P, S), C)", &["P", "C"]),
+        ["P=ann C=1", "P=bob C=1", "P=cat C=2"]
+    );
+    assert_eq!(
+        q(
+            "aggregate(sum(S), P^(team(T, P), score(P, S)), Sum)",
+            &["T", "Sum"]
+        ),
+        ["T=a Sum=8", "T=b Sum=5"]
+    );
+    assert_eq!(q("aggregate(max(S), P^score(P, S), M)", &["M"]), ["M=5"]);
+    assert_eq!(
+        q("aggregate(min(S), score(P, S), M)", &["P", "M"]),
+        ["P=ann M=3", "P=bob M=5", "P=cat M=1"]
+    );
+    assert_eq!(
+        q("aggregate(max(S, P), score(P, S), M)", &["M"]),
+        ["M=max(5,bob)"]
+    );
+    assert_eq!(
+        q("aggregate(bag(P), S^score(P, S), B)", &["B"]),
+        ["B=[ann,bob,cat,cat]"]
+    );
+    assert_eq!(
+        q("aggregate(set(P), S^score(P, S), B)", &["B"]),
+        ["B=[ann,bob,cat]"]
+    );
+    assert_eq!(
+        q("aggregate(bag(S), team(T, P)^score(P, S), B)", &["B"]),
+        ["B=[3,5,4,1]"]
+    );
+    // No answers: aggregate/3 fails, aggregate_all/3 answers the empty aggregate.
+    assert!(q("aggregate(count, score(nobody, _), C)", &["C"]).is_empty());
+    assert!(q("aggregate(sum(S), score(nobody, S), C)", &["C"]).is_empty());
+    assert_eq!(
+        q("aggregate_all(count, score(nobody, _), C)", &["C"]),
+        ["C=0"]
+    );
+    assert_eq!(
+        q("aggregate_all(bag(S), score(nobody, S), B)", &["B"]),
+        ["B=[]"]
+    );
+}
+
+/// `aggregate/4` counts each discriminator-item pair once (`setof` of the pairs) and groups by
+/// the goal's other free variables.
+#[test]
+fn aggregate_with_a_discriminator_counts_distinct_pairs() {
+    let q = |query: &str, vars: &[&str]| scores(query, vars);
+    // cat's two scores are two distinct pairs; the discriminator P alone counts persons.
+    assert_eq!(q("aggregate(count, P, S^score(P, S), C)", &["C"]), ["C=3"]);
+    assert_eq!(
+        q("aggregate(sum(S), P, score(P, S), Sum)", &["Sum"]),
+        ["Sum=13"]
+    );
+    assert_eq!(
+        q(
+            "aggregate(sum(S), P, team(T, P)^score(P, S), Sum)",
+            &["Sum"]
+        ),
+        ["Sum=13"]
+    );
+    assert_eq!(
+        q(
+            "aggregate(count, P, S^(team(T, P), score(P, S)), C)",
+            &["T", "C"]
+        ),
+        ["T=a C=2", "T=b C=1"]
+    );
+    assert_eq!(q("aggregate(max(S), P, score(P, S), M)", &["M"]), ["M=5"]);
+    assert_eq!(
+        q("aggregate(bag(P), S, score(P, S), B)", &["B"]),
+        ["B=[cat,ann,cat,bob]"]
+    );
+    assert!(q("aggregate(count, P, score(P, nothing), C)", &["C"]).is_empty());
+}

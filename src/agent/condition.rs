@@ -5,9 +5,10 @@ use super::error::Fault;
 use super::goals::Goal;
 use super::mental_state::{GoalQuery, MentalState};
 use super::program::Lit;
+use crate::kr::fxhash::FxHasher;
+use crate::kr::native::code::Key;
 use crate::syntax::ast::MentalOp;
 use crate::term::{Subst, Term};
-use std::collections::hash_map::DefaultHasher;
 use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
 
@@ -30,7 +31,7 @@ struct AnswerSet {
 const HASH_FROM: usize = 16;
 
 fn hash_of(s: &Subst) -> u64 {
-    let mut h = DefaultHasher::new();
+    let mut h = FxHasher::default();
     s.hash(&mut h);
     h.finish()
 }
@@ -148,7 +149,6 @@ fn literal(
     else {
         return Ok(vec![theta.clone()]);
     };
-    let q = theta.apply(query);
     let ms = cx.ms;
     let mut raw = AnswerSet::default();
     // A negated literal is decided by all answers (a filter after the query may drop the
@@ -156,13 +156,16 @@ fn literal(
     let cap = if *negated { usize::MAX } else { cap };
     match (op, about) {
         // Selectors other than this/self query the mental models of other agents.
-        (_, Some(others)) => raw.items = super::models::answers(ms, others, *op, &q, theta)?,
+        (_, Some(others)) => {
+            raw.items = super::models::answers(ms, others, *op, &theta.apply(query), theta)?
+        }
         (MentalOp::Bel, None) => {
-            let (found, stopped) = ms.bel_upto(&q, cap)?;
+            let (found, stopped) = ms.bel_upto_in(query, theta, cap)?;
             *cut |= stopped;
             raw.items = found;
         }
         (MentalOp::Goal | MentalOp::AGoal | MentalOp::GoalA, None) => {
+            let q = theta.apply(query);
             let gq = GoalQuery::new(&ms.knowledge, &q);
             let base = match (top_level, cx.only) {
                 (true, _) => Some(ms.attention.top_level()),
@@ -172,7 +175,10 @@ fn literal(
             // When only goal facts answer the query, the goals without a fact of its
             // predicate have no answer: look at the others alone (the base's index).
             let goals: Vec<&Goal> = match (base, gq.fact_predicate()) {
-                (Some(b), Some((name, arity))) => b.with_predicate(name, arity).collect(),
+                (Some(b), Some((name, arity))) => match q.args().first().and_then(Key::of_term) {
+                    Some(key) => b.with_first_arg(name, arity, key).collect(),
+                    None => b.with_predicate(name, arity).collect(),
+                },
                 (Some(b), None) => b.goals().iter().collect(),
                 (None, _) => cx.only.into_iter().collect(),
             };

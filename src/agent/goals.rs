@@ -1,6 +1,7 @@
 //! Goals: single goals (conjunctions of ground facts), goal bases and the attention stack.
 
 use crate::kr::fxhash::FxHashMap;
+use crate::kr::native::code::Key;
 use crate::term::{Sym, Term};
 use std::sync::Arc;
 
@@ -24,7 +25,8 @@ impl Goal {
     }
 }
 
-/// A set of single goals in adoption order, indexed by the predicates of their facts.
+/// A set of single goals in adoption order, indexed by the predicates of their facts and by
+/// predicate and first argument.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct GoalBase {
     goals: Vec<Goal>,
@@ -32,6 +34,10 @@ pub struct GoalBase {
     /// it: a goal condition on a predicate only knowledge-free facts answer looks at these
     /// goals alone instead of querying every goal.
     preds: FxHashMap<(Sym, u32), Vec<u32>>,
+    /// The same by predicate and the key of the first argument (goal facts are ground, so
+    /// every fact with arguments has one): `goal(fib(N1))` with `N1` bound looks at the goals
+    /// with a `fib(N1)` fact alone, not at every `fib/1` goal.
+    keys: FxHashMap<(Sym, u32, Key), Vec<u32>>,
 }
 
 impl GoalBase {
@@ -59,6 +65,20 @@ impl GoalBase {
             .iter()
             .map(|&i| &self.goals[i as usize])
     }
+    /// The goals with a fact of predicate `name/arity` whose first argument has key `key`, in
+    /// adoption order (a superset of the goals with a fact unifying a query of that key).
+    pub(crate) fn with_first_arg(
+        &self,
+        name: Sym,
+        arity: usize,
+        key: Key,
+    ) -> impl Iterator<Item = &Goal> + '_ {
+        self.keys
+            .get(&(name, arity as u32, key))
+            .map_or(&[][..], |v| &v[..])
+            .iter()
+            .map(|&i| &self.goals[i as usize])
+    }
     /// Adds a goal unless present; true when added.
     pub fn add(&mut self, g: Goal) -> bool {
         if self.contains(&g.term) {
@@ -74,6 +94,12 @@ impl GoalBase {
                 let at = self.preds.entry((name, arity as u32)).or_default();
                 if at.last() != Some(&(pos as u32)) {
                     at.push(pos as u32);
+                }
+                if let Some(key) = f.args().first().and_then(Key::of_term) {
+                    let at = self.keys.entry((name, arity as u32, key)).or_default();
+                    if at.last() != Some(&(pos as u32)) {
+                        at.push(pos as u32);
+                    }
                 }
             }
         }
@@ -91,6 +117,7 @@ impl GoalBase {
         });
         if !removed.is_empty() {
             self.preds.clear();
+            self.keys.clear();
             let goals = std::mem::take(&mut self.goals);
             for (i, g) in goals.iter().enumerate() {
                 self.index(i, g);
@@ -187,5 +214,11 @@ mod tests {
         assert_eq!(by(&b), ["fib(2),fib(1)", "fib(0)"]);
         assert!(b.add(goal("fib(5)")));
         assert_eq!(by(&b), ["fib(2),fib(1)", "fib(0)", "fib(5)"]);
+        let first = |b: &GoalBase, n: i64| names(b.with_first_arg(fib, 1, Key::Int(n)).cloned());
+        assert_eq!(first(&b, 1), ["fib(2),fib(1)"]);
+        assert_eq!(first(&b, 5), ["fib(5)"]);
+        assert!(first(&b, 3).is_empty());
+        assert!(b.add(goal("(fib(1), fib(4))")));
+        assert_eq!(first(&b, 1), ["fib(2),fib(1)", "fib(1),fib(4)"]);
     }
 }

@@ -121,19 +121,53 @@ impl MentalState {
         Ok(self.bel_upto(q, usize::MAX)?.0)
     }
 
+    /// [`MentalState::bel_upto`] of `theta` applied to `q`: the answers bind the variables of
+    /// `q` that `theta` leaves free. The native engine takes a query it runs whole (a
+    /// conjunction, a built-in, a knowledge predicate) with `theta` as it is, so the
+    /// instantiated query is never built.
+    pub fn bel_upto_in(
+        &self,
+        q: &Term,
+        theta: &Subst,
+        cap: usize,
+    ) -> Result<(Vec<Subst>, bool), Fault> {
+        let whole = !theta.is_empty()
+            && q.functor()
+                .is_some_and(|(name, arity)| self.knowledge.resolves(name, arity))
+            && first_conjunct(q).functor().is_some()
+            && !segmented(q);
+        if whole {
+            if self.cannot_hold(q) {
+                return Ok((Vec::new(), false));
+            }
+            let bases = self.bases();
+            let view = View::beliefs(&self.knowledge, &bases);
+            let run = match self.engine.try_borrow_mut() {
+                Ok(mut e) => match &mut *e {
+                    AgentEngine::Native(n) => n.query_upto_in(&view, q, theta, cap),
+                    #[allow(unreachable_patterns)]
+                    _ => None,
+                },
+                Err(_) => return Err(Fault::new("the KR engine is busy (re-entrant query)")),
+            };
+            if let Some(r) = run {
+                return r.map_err(|e| Fault::new(format!("query {}: {e}", theta.apply(q))));
+            }
+        }
+        let (found, cut) = self.bel_upto(&theta.apply(q), cap)?;
+        Ok((found, cut))
+    }
+
     /// The first `cap` answers of [`MentalState::bel`], and whether the search stopped at `cap`.
     pub fn bel_upto(&self, q: &Term, cap: usize) -> Result<(Vec<Subst>, bool), Fault> {
         if self.cannot_hold(q) {
             return Ok((Vec::new(), false));
         }
-        let parts = q.conjuncts();
-        let negation = |t: &Term| t.is_functor(wk::NOT, 1) || t.is_functor(wk::NAF, 1);
-        if parts.len() < 2
-            || !parts.iter().any(|t| negation(t))
-            || parts.iter().any(|t| t.is_functor(wk::CUT, 0))
-        {
+        if !segmented(q) {
             return self.bel_raw(q, cap);
         }
+        let parts = q.conjuncts();
+        let negation = |t: &Term| t.is_functor(wk::NOT, 1) || t.is_functor(wk::NAF, 1);
         let mut cut = false;
         let mut answers = vec![Subst::new()];
         let mut i = 0;
@@ -252,11 +286,7 @@ impl MentalState {
     /// `q` has no answer. Skips the engine for the common rule whose first literal looks for
     /// something absent, e.g. `received(S, M)` with an empty mailbox.
     fn cannot_hold(&self, q: &Term) -> bool {
-        let mut first = q;
-        while first.is_functor(wk::COMMA, 2) {
-            first = &first.args()[0];
-        }
-        let Some((name, arity)) = first.functor() else {
+        let Some((name, arity)) = first_conjunct(q).functor() else {
             return false;
         };
         !self.knowledge.resolves(name, arity)
@@ -404,6 +434,40 @@ impl MentalState {
             }
         }
         Ok(())
+    }
+}
+
+/// The first goal of a conjunction (the term itself when it is not one).
+fn first_conjunct(q: &Term) -> &Term {
+    let mut first = q;
+    while first.is_functor(wk::COMMA, 2) {
+        first = &first.args()[0];
+    }
+    first
+}
+
+/// True when [`MentalState::bel_upto`] runs `q` in segments: a conjunction with a negated
+/// conjunct (`not/1`, `\+/1`) and no cut.
+fn segmented(q: &Term) -> bool {
+    let negation = |t: &Term| t.is_functor(wk::NOT, 1) || t.is_functor(wk::NAF, 1);
+    let mut has_negation = false;
+    let mut cur = q;
+    let mut conjunction = false;
+    loop {
+        let (part, rest) = if cur.is_functor(wk::COMMA, 2) {
+            conjunction = true;
+            (&cur.args()[0], Some(&cur.args()[1]))
+        } else {
+            (cur, None)
+        };
+        if part.is_functor(wk::CUT, 0) {
+            return false;
+        }
+        has_negation |= negation(part);
+        match rest {
+            Some(r) => cur = r,
+            None => return conjunction && has_negation,
+        }
     }
 }
 

@@ -105,20 +105,24 @@ impl Subst {
         match self.walk(t) {
             Term::Compound(_) if depth >= SHALLOW => self.apply_depth(t, depth),
             w @ Term::Compound(c) => {
-                let args: Vec<Term> = c
-                    .args
-                    .iter()
-                    .map(|a| self.apply_shallow(a, depth + 1))
-                    .collect();
-                if args
-                    .iter()
-                    .zip(c.args.iter())
-                    .all(|(new, old)| same(new, old))
-                {
-                    w.clone()
-                } else {
-                    Term::compound(c.name, args)
+                // Arguments the substitution leaves alone are shared, not rebuilt: a new
+                // argument vector is only made from the first argument that changes.
+                for (i, a) in c.args.iter().enumerate() {
+                    let first = self.apply_shallow(a, depth + 1);
+                    if same(&first, a) {
+                        continue;
+                    }
+                    let mut args: Vec<Term> = Vec::with_capacity(c.args.len());
+                    args.extend(c.args[..i].iter().cloned());
+                    args.push(first);
+                    args.extend(
+                        c.args[i + 1..]
+                            .iter()
+                            .map(|a| self.apply_shallow(a, depth + 1)),
+                    );
+                    return Term::compound(c.name, args);
                 }
+                w.clone()
             }
             other => other.clone(),
         }

@@ -162,16 +162,32 @@ pub(crate) struct Solver<'a, 'm> {
     /// The inference count at which budgets are checked next (see `budget.rs`).
     pub next_check: u64,
     pub query_vars: Vec<(Sym, Cell)>,
+    /// How many of `query_vars` (the first ones) were bound before the query ran.
+    bound: usize,
 }
 
 impl<'a, 'm> Solver<'a, 'm> {
     /// Prepares `goal` for solving.
-    pub fn new(m: &'m mut Machine, cx: Ctx<'a>, goal: &Term, occurs_check: bool) -> Self {
+    pub fn new(
+        m: &'m mut Machine,
+        cx: Ctx<'a>,
+        goal: &Term,
+        env: &Subst,
+        occurs_check: bool,
+    ) -> Self {
         m.reset();
         m.st.occurs_check = occurs_check;
         m.st.max_walk = cx.limits.max_heap_cells as usize;
         let next_check = CHECK_EVERY.min(cx.limits.max_inferences + 1);
+        // The variables `env` binds (to ground terms) are placed first and share their cells
+        // wherever the goal names them: the goal runs as `env` applied to it, without that
+        // term being built. Answers leave them out.
         let mut vars = Vec::new();
+        for (v, t) in env.iter() {
+            let c = m.st.put_term(t, &mut vars);
+            vars.push((v, c));
+        }
+        let bound = vars.len();
         let g = m.st.put_term(goal, &mut vars);
         m.frames.push(Frame {
             goal: Goal::Call(g),
@@ -187,6 +203,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             inferences: 0,
             next_check,
             query_vars: vars,
+            bound,
         }
     }
 
@@ -208,7 +225,7 @@ impl<'a, 'm> Solver<'a, 'm> {
         // Names are only needed for unbound variables inside answers: built on first use.
         let mut names: Option<VarNames> = None;
         let mut s = Subst::new();
-        for (v, c) in &self.query_vars {
+        for (v, c) in &self.query_vars[self.bound..] {
             let d = self.m.st.deref(*c);
             if let (Cell::Ref(a), Cell::Ref(b)) = (d, *c) {
                 if a == b {

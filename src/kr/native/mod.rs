@@ -93,15 +93,17 @@ impl NativeEngine {
         query: &Term,
         each: &mut dyn FnMut(Subst) -> bool,
     ) -> KrResult<usize> {
-        self.solve_inner(view, query, true, each)
+        self.solve_inner(view, query, &Subst::new(), true, each)
     }
 
-    /// [`NativeEngine::solve`]; with `convert` false, answers are not converted to terms (the
-    /// callback gets empty substitutions).
+    /// [`NativeEngine::solve`] of `env` applied to `query` (`env` binds variables to ground
+    /// terms; answers bind the other variables only); with `convert` false, answers are not
+    /// converted to terms (the callback gets empty substitutions).
     fn solve_inner(
         &mut self,
         view: &View,
         query: &Term,
+        env: &Subst,
         convert: bool,
         each: &mut dyn FnMut(Subst) -> bool,
     ) -> KrResult<usize> {
@@ -118,7 +120,7 @@ impl NativeEngine {
                 clock: &mut self.clock,
                 made_atoms: &mut self.made_atoms,
             };
-            let mut s = Solver::new(m, cx, query, self.occurs_check);
+            let mut s = Solver::new(m, cx, query, env, self.occurs_check);
             let mut n = 0;
             let mut first = true;
             while s.next(first)? {
@@ -175,13 +177,37 @@ impl NativeEngine {
         Ok((out, cut))
     }
 
+    /// [`NativeEngine::query_upto`] of `env` applied to `query`, without building that term:
+    /// the answers bind the variables `env` leaves free. `env` must bind its variables to
+    /// ground terms (`None` otherwise: apply it and ask [`NativeEngine::query_upto`]).
+    pub fn query_upto_in(
+        &mut self,
+        view: &View,
+        query: &Term,
+        env: &Subst,
+        cap: usize,
+    ) -> Option<KrResult<(Vec<Subst>, bool)>> {
+        if !env.iter().all(|(_, t)| t.is_ground()) {
+            return None;
+        }
+        let mut out = Vec::new();
+        let run = self.solve_inner(view, query, env, true, &mut |s| {
+            out.push(s);
+            out.len() < cap
+        });
+        Some(run.map(|_| {
+            let cut = out.len() >= cap;
+            (out, cut)
+        }))
+    }
+
     /// True when `query` has at least one answer (stops after the first).
     fn first(&mut self, view: &View, query: &Term) -> KrResult<bool> {
         if let Some(n) = Self::ground_fact_count(view, query) {
             return Ok(n > 0);
         }
         let mut found = false;
-        self.solve_inner(view, query, false, &mut |_| {
+        self.solve_inner(view, query, &Subst::new(), false, &mut |_| {
             found = true;
             false
         })?;

@@ -148,6 +148,12 @@ aggregate(min(E, W), G, min(M, MW)) :- !, '$aggr_template'(G, E-W, G1, T1), bago
 aggregate(bag(E), G, L) :- !, '$aggr_template'(G, E, G1, E1), bagof(E1, G1, L).
 aggregate(set(E), G, S) :- !, '$aggr_template'(G, E, G1, E1), setof(E1, G1, S).
 '$aggr_template'(G, T, G, T).
+aggregate(count, D, G, C) :- !, setof(D-x, G, Ps), length(Ps, C).
+aggregate(sum(E), D, G, S) :- !, setof(D-E, G, Ps), pairs_values(Ps, Vs), '$sum_eval'(Vs, S).
+aggregate(max(E), D, G, M) :- !, setof(D-E, G, Ps), pairs_values(Ps, Vs), '$max_eval'(Vs, max, M).
+aggregate(min(E), D, G, M) :- !, setof(D-E, G, Ps), pairs_values(Ps, Vs), '$max_eval'(Vs, min, M).
+aggregate(bag(E), D, G, B) :- !, setof(D-E, G, Ps), pairs_values(Ps, B).
+aggregate(set(E), D, G, S) :- !, setof(D-E, G, Ps), pairs_values(Ps, B), sort(B, S).
 "#;
 
 /// The prelude clauses.
