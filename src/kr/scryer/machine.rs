@@ -7,13 +7,14 @@
 use super::text;
 use crate::kr::KrError;
 use crate::term::Term;
-use crossbeam_channel::{bounded, Receiver, Sender};
+use crossbeam_channel::{bounded, Receiver, RecvTimeoutError, Sender};
 use scryer_prolog::{LeafAnswer, Machine, MachineBuilder, StreamConfig};
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::io::Cursor;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::rc::Rc;
 use std::thread::JoinHandle;
+use std::time::Instant;
 
 /// One request: bring the facts of machine `world` up to date, then run `goal`.
 pub struct Request {
@@ -41,6 +42,8 @@ pub struct Worker {
     tx: Option<Sender<Request>>,
     rx: Receiver<Reply>,
     join: Option<JoinHandle<()>>,
+    /// A request outlived its time: the thread is left to finish on its own.
+    stuck: Cell<bool>,
 }
 
 /// Number of machines (kinds of view) a worker keeps.
@@ -60,19 +63,34 @@ impl Worker {
             tx: Some(tx),
             rx,
             join: Some(join),
+            stuck: Cell::new(false),
         })
     }
 
-    /// Sends a request and waits for its reply.
-    pub fn ask(&self, r: Request) -> Reply {
+    /// Sends a request and waits for its reply until `until`. A request still running then
+    /// (work scryer's inference count does not bound, such as unifying long lists again and
+    /// again) is an interrupted query; the worker is then [`stuck`](Worker::stuck).
+    pub fn ask(&self, r: Request, until: Instant) -> Reply {
         let tx = self
             .tx
             .as_ref()
             .ok_or_else(|| fault("scryer thread stopped"))?;
         tx.send(r).map_err(|_| fault("the scryer thread stopped"))?;
-        self.rx
-            .recv()
-            .map_err(|_| fault("the scryer thread stopped"))?
+        match self.rx.recv_deadline(until) {
+            Ok(reply) => reply,
+            Err(RecvTimeoutError::Timeout) => {
+                self.stuck.set(true);
+                Err(KrError::Interrupted {
+                    predicate: "scryer query".into(),
+                })
+            }
+            Err(RecvTimeoutError::Disconnected) => Err(fault("the scryer thread stopped")),
+        }
+    }
+
+    /// True when a request outlived its time: the worker must be replaced.
+    pub fn stuck(&self) -> bool {
+        self.stuck.get()
     }
 }
 
@@ -80,7 +98,11 @@ impl Drop for Worker {
     fn drop(&mut self) {
         self.tx = None;
         if let Some(j) = self.join.take() {
-            let _ = j.join();
+            // A stuck thread cannot be stopped (scryer has no per-machine interrupt): it is
+            // detached, ends when its query does, and its reply goes nowhere.
+            if !self.stuck.get() {
+                let _ = j.join();
+            }
         }
     }
 }
@@ -164,29 +186,40 @@ fn run(world: &mut World, r: &Request) -> Reply {
             vec![Term::list(r.retract.clone()), Term::list(r.assert.clone())],
         );
         match solve(&mut world.machine, &sync)? {
-            Answer::Bound(_) => {}
+            Answer::Bound => {}
             Answer::Error(e) => return Err(KrError::Iso(e)),
             Answer::Failed => return Err(fault("updating the facts failed")),
         }
     }
-    let out = Term::var("GoalOut__");
+    // Run under `\+ \+`: scryer's Rust API then reads back no binding (it reads lists of
+    // characters wrong); the answer comes back as text after a marker on the output.
     let q = Term::compound(
-        "$goal_run",
-        vec![
-            r.template.clone(),
-            r.goal.clone(),
-            Term::Int(r.cap as i64),
-            Term::Int(r.inferences.min(i64::MAX as u64) as i64),
-            out,
-        ],
+        "\\+",
+        vec![Term::compound(
+            "\\+",
+            vec![Term::compound(
+                "$goal_run",
+                vec![
+                    r.template.clone(),
+                    r.goal.clone(),
+                    Term::Int(r.cap as i64),
+                    Term::Int(r.inferences.min(i64::MAX as u64) as i64),
+                    Term::var("_"),
+                ],
+            )],
+        )],
     );
-    let result = match solve(&mut world.machine, &q)? {
-        Answer::Bound(t) => t,
+    match solve(&mut world.machine, &q)? {
+        Answer::Bound => {}
         Answer::Error(e) => return Err(KrError::Iso(e)),
         Answer::Failed => return Err(fault("the query wrapper failed")),
-    };
-    let output =
+    }
+    let said =
         String::from_utf8_lossy(&std::mem::take(&mut *world.output.borrow_mut())).into_owned();
+    let Some((output, text)) = said.rsplit_once(ANSWER_MARK) else {
+        return Err(fault("scryer gave no answer"));
+    };
+    let result = read_answer(text)?;
     if result.is_functor(crate::term::Sym::intern("budget"), 0) {
         return Err(KrError::Budget {
             predicate: "scryer query".into(),
@@ -202,20 +235,44 @@ fn run(world: &mut World, r: &Request) -> Reply {
         });
     }
     match inner.list_items() {
-        Some(items) => Ok((items, output)),
+        Some(items) => Ok((items, output.to_string())),
         None => Err(fault("unexpected answer from scryer")),
     }
 }
 
+/// What `'$goal_run'` writes before the answer.
+const ANSWER_MARK: &str = "\u{1}goal-answer\u{1}";
+
+/// Reads the answer `'$goal_run'` wrote (`ok(Answers)`, `err(E)` or `budget`).
+fn read_answer(text: &str) -> Result<Term, KrError> {
+    crate::syntax::prolog::Reader::new("scryer answer")
+        .term(text.trim(), 0)
+        .map(|t| t.term)
+        .map_err(|d| {
+            if d.message.contains("levels deep") {
+                KrError::Resource {
+                    resource: "memory",
+                    predicate: "scryer answer".into(),
+                    limit: crate::syntax::prolog::lexer::MAX_NESTING as u64,
+                }
+            } else {
+                fault(&format!(
+                    "cannot read scryer's answer: {} in {text}",
+                    d.message
+                ))
+            }
+        })
+}
+
 enum Answer {
-    Bound(Term),
+    Bound,
     Error(Term),
     Failed,
 }
 
-/// Runs a query printed from a term; its `GoalOut__` binding, the error it raised, or failure.
+/// Runs a query printed from a term: whether it succeeded, the error it raised, or failure.
 fn solve(machine: &mut Machine, q: &Term) -> Result<Answer, KrError> {
-    let text = format!("{q} .");
+    let text = format!("{} .", text::canonical(q));
     let run = catch_unwind(AssertUnwindSafe(|| {
         machine.run_query(text).take(2).collect::<Vec<_>>()
     }));
@@ -225,10 +282,6 @@ fn solve(machine: &mut Machine, q: &Term) -> Result<Answer, KrError> {
         Some(Ok(LeafAnswer::Exception(e))) | Some(Err(e)) => {
             Answer::Error(text::from_scryer(&e, 0)?)
         }
-        Some(Ok(LeafAnswer::True)) => Answer::Bound(Term::atom("true")),
-        Some(Ok(LeafAnswer::LeafAnswer { bindings, .. })) => match bindings.get("GoalOut__") {
-            Some(t) => Answer::Bound(text::from_scryer(t, 0)?),
-            None => Answer::Bound(Term::atom("true")),
-        },
+        Some(Ok(LeafAnswer::True)) | Some(Ok(LeafAnswer::LeafAnswer { .. })) => Answer::Bound,
     })
 }

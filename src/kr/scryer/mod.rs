@@ -24,6 +24,11 @@ use super::fxhash::FxHashMap;
 use super::{Engine, View};
 use crate::term::{Subst, Sym, Term};
 use machine::{Request, Worker};
+use std::time::{Duration, Instant};
+
+/// The longest a query may run on scryer when the limits set no earlier deadline: the
+/// backstop for work scryer's inference count does not bound.
+pub const BACKSTOP: Duration = Duration::from_secs(60);
 
 /// Retracted clauses a machine may leak before it is rebuilt (about 3.4 KB each: ~70 MB).
 pub const REBUILD_AFTER: u64 = 20_000;
@@ -50,6 +55,8 @@ pub struct ScryerEngine {
     pub rebuilds: u64,
     /// Retractions after which a machine is rebuilt ([`REBUILD_AFTER`]).
     pub rebuild_after: u64,
+    /// The longest one query may run ([`BACKSTOP`]; an earlier deadline of the limits wins).
+    pub backstop: Duration,
 }
 
 impl std::fmt::Debug for ScryerEngine {
@@ -66,6 +73,7 @@ impl ScryerEngine {
     pub fn new(clauses: &[Term]) -> KrResult<ScryerEngine> {
         let mut program = String::from(PRELUDE);
         program.push_str(&text::denied_facts());
+        program.push_str(&text::table_facts());
         for c in group_by_predicate(clauses) {
             program.push_str(&text::clause(c)?);
         }
@@ -77,6 +85,7 @@ impl ScryerEngine {
             output: String::new(),
             rebuilds: 0,
             rebuild_after: REBUILD_AFTER,
+            backstop: BACKSTOP,
         })
     }
 
@@ -84,6 +93,15 @@ impl ScryerEngine {
     pub fn with_limits(mut self, limits: Limits) -> ScryerEngine {
         self.limits = limits;
         self
+    }
+
+    /// When the running query is given up: the backstop, or the limits' deadline if earlier.
+    fn until(&self) -> Instant {
+        let backstop = Instant::now() + self.backstop;
+        match self.limits.deadline {
+            Some(d) if d < backstop => d,
+            _ => backstop,
+        }
     }
 
     /// The first `cap` answers (`usize::MAX`: all), and whether the search stopped at `cap`.
@@ -119,16 +137,27 @@ impl ScryerEngine {
         let Some(worker) = &self.worker else {
             return Err(machine::fault("the scryer thread did not start"));
         };
-        let reply = worker.ask(Request {
-            world,
-            rebuild,
-            retract,
-            assert,
-            template,
-            goal,
-            cap,
-            inferences: self.limits.max_inferences,
-        });
+        let reply = worker.ask(
+            Request {
+                world,
+                rebuild,
+                retract,
+                assert,
+                template,
+                goal,
+                cap,
+                inferences: self.limits.max_inferences,
+            },
+            self.until(),
+        );
+        if worker.stuck() {
+            // Its thread still runs the query: the next query gets a new thread, and every
+            // machine of it is given the facts afresh.
+            self.worker = None;
+            for m in &mut self.mirrors {
+                *m = Mirror::default();
+            }
+        }
         let reply = match reply {
             Ok(r) => r,
             Err(e) => {
@@ -258,7 +287,10 @@ fn rename(t: &Term, names: &mut FxHashMap<Sym, Term>) -> Term {
     }
     match t {
         Term::Var(x) => {
-            let n = names.len();
+            let n = names
+                .values()
+                .filter(|t| t.to_string().starts_with("_R"))
+                .count();
             names
                 .entry(*x)
                 .or_insert_with(|| Term::var(&format!("_R{n}")))
@@ -325,6 +357,7 @@ impl Clone for ScryerEngine {
             output: String::new(),
             rebuilds: 0,
             rebuild_after: self.rebuild_after,
+            backstop: self.backstop,
         }
     }
 }

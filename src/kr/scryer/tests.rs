@@ -148,3 +148,40 @@ fn belief_churn_rebuilds_the_machine() {
     // Two retractions per update: a rebuild after every 50 updates.
     assert_eq!(e.rebuilds, 4);
 }
+
+#[test]
+fn a_query_past_its_time_is_interrupted_and_the_next_one_answers() {
+    let clauses = terms("spin :- spin.");
+    let kn = Knowledge::load(&clauses).unwrap();
+    let limits = Limits {
+        max_inferences: 1 << 60,
+        ..Limits::default()
+    };
+    let mut e = ScryerEngine::new(&clauses).unwrap().with_limits(limits);
+    e.backstop = Duration::from_millis(300);
+    let view = View::beliefs(&kn, &[]);
+    match e.query(&view, &term("spin")) {
+        Err(KrError::Interrupted { .. }) => {}
+        other => panic!("expected an interrupted query, got {other:?}"),
+    }
+    // The next query gets a new thread (starting it takes longer than 300 ms in debug builds).
+    e.backstop = BACKSTOP;
+    assert!(e.holds(&view, &term("X = 1")).unwrap());
+}
+
+#[test]
+fn lists_of_characters_and_operators_come_back_whole() {
+    let kn = Knowledge::load(&[]).unwrap();
+    let mut e = ScryerEngine::new(&[]).unwrap();
+    let view = View::beliefs(&kn, &[]);
+    for (q, want) in [
+        ("atom_chars(abc, L)", "L=[a,b,c]"),
+        ("select(X, [a, b], R), !", "X=a,R=[b]"),
+        ("X is 5 xor 3", "X=6"),
+        ("X = f((a :- b), -, 'it''s')", "X=f((a:-b),-,'it\\'s')"),
+        ("msort([2, 1.0, b, 1], L)", "L=[1.0,1,2,b]"),
+        ("number_codes(N, \"42\")", "N=42"),
+    ] {
+        assert_eq!(shown(&e.query(&view, &term(q)).unwrap()), [want], "{q}");
+    }
+}

@@ -10,6 +10,7 @@
 //!   branch).
 
 use crate::kr::KrError;
+use crate::term::Style;
 use crate::term::{Float, Sym, Term};
 
 /// Nesting deeper than this is refused (the rewrites and conversions recurse).
@@ -73,6 +74,117 @@ pub fn denied(name: &str) -> bool {
     (DENIED.contains(&name) || name.starts_with('$') || crate::kr::knowledge::is_protected(name))
         && !matches!(name, "catch" | "throw")
 }
+
+/// Built-ins that run as a predicate of the prelude: SWI's meaning where scryer's differs
+/// (arithmetic, the standard order of terms, text given as a string) and bounds on work
+/// scryer does in one inference (`length/2`). The arithmetic comparisons go to
+/// `'$goal_cmp'(Op, A, B)`, the others to the name given. Written goals are renamed here;
+/// closures naming them (`maplist(is, ...)`) and goals built at run time are renamed by the
+/// prelude's `'$goal_safe'`, from the same table.
+const RENAMED: &[(&str, usize, &str)] = &[
+    ("is", 2, "$goal_is"),
+    ("<", 2, "$goal_cmp"),
+    (">", 2, "$goal_cmp"),
+    ("=<", 2, "$goal_cmp"),
+    (">=", 2, "$goal_cmp"),
+    ("=:=", 2, "$goal_cmp"),
+    ("=\\=", 2, "$goal_cmp"),
+    ("length", 2, "$goal_length"),
+    ("compare", 3, "$goal_compare"),
+    ("@<", 2, "$goal_before"),
+    ("@>", 2, "$goal_after"),
+    ("@=<", 2, "$goal_not_after"),
+    ("@>=", 2, "$goal_not_before"),
+    ("sort", 2, "$goal_sort"),
+    ("keysort", 2, "$goal_keysort"),
+    ("setof", 3, "$goal_setof"),
+    ("number_codes", 2, "$goal_number_codes"),
+    ("arg", 3, "$goal_arg"),
+    ("between", 3, "$goal_between"),
+    ("format", 3, "$goal_format"),
+];
+
+/// The prelude's name for a built-in of [`RENAMED`].
+fn renamed(name: &str, arity: usize) -> Option<&'static str> {
+    RENAMED
+        .iter()
+        .find(|(n, a, _)| *n == name && *a == arity)
+        .map(|(_, _, r)| *r)
+}
+
+/// `name(args)` as the prelude's predicate of [`RENAMED`] (the comparisons get the operator as
+/// first argument); `None` when `name/arity` is not renamed.
+fn rename(name: Sym, args: &[Term]) -> Option<Term> {
+    let to = renamed(name.name(), args.len())?;
+    Some(if to == "$goal_cmp" {
+        Term::compound(to, vec![Term::Atom(name), args[0].clone(), args[1].clone()])
+    } else {
+        Term::compound(to, args.to_vec())
+    })
+}
+
+/// The `'$goal_renamed'/3` and `'$goal_meta'/4` facts for the prelude: the tables the
+/// run-time rewriting (`'$goal_safe'`) shares with [`query`] and [`clause`].
+pub fn table_facts() -> String {
+    let mut out = String::new();
+    for (n, a, r) in RENAMED {
+        let fact = Term::compound(
+            "$goal_renamed",
+            vec![Term::atom(n), Term::Int(*a as i64), Term::atom(r)],
+        );
+        out.push_str(&format!("{} .\n", canonical(&fact)));
+    }
+    for (n, a) in META {
+        for &(p, x) in meta_args(n, *a) {
+            let fact = Term::compound(
+                "$goal_meta",
+                vec![
+                    Term::atom(n),
+                    Term::Int(*a as i64),
+                    Term::Int(p as i64),
+                    Term::Int(x as i64),
+                ],
+            );
+            out.push_str(&format!("{} .\n", canonical(&fact)));
+        }
+    }
+    out
+}
+
+/// A term as text scryer reads back as the same term: quoted atoms and no operators (scryer
+/// 0.10 panics on operators it does not know, such as `xor` and `=@=`).
+pub fn canonical(t: &Term) -> String {
+    t.to_text(Style::CANONICAL)
+}
+
+/// Meta-predicates with goal or closure arguments (`meta_args` gives the positions; `call/N`
+/// is handled apart, by arity).
+const META: &[(&str, usize)] = &[
+    ("findall", 3),
+    ("findall", 4),
+    ("aggregate_all", 3),
+    ("aggregate_all", 4),
+    ("forall", 2),
+    ("\\+", 1),
+    ("not", 1),
+    ("once", 1),
+    ("ignore", 1),
+    ("catch", 3),
+    ("maplist", 2),
+    ("maplist", 3),
+    ("maplist", 4),
+    ("maplist", 5),
+    ("maplist", 6),
+    ("maplist", 7),
+    ("foldl", 4),
+    ("foldl", 5),
+    ("foldl", 6),
+    ("include", 3),
+    ("exclude", 3),
+    ("partition", 4),
+    ("phrase", 2),
+    ("phrase", 3),
+];
 
 /// The `'$goal_denied'/2` facts for the prelude.
 pub fn denied_facts() -> String {
@@ -151,7 +263,7 @@ pub fn clause(t: &Term) -> Result<String, KrError> {
     } else {
         t.clone()
     };
-    Ok(format!("{} .\n", c))
+    Ok(format!("{} .\n", canonical(&c)))
 }
 
 /// A query as scryer text (without the final `.`), its goal rewritten.
@@ -184,6 +296,7 @@ fn closure(t: &Term, extra: usize) -> Result<Term, KrError> {
         Term::Var(_) => Ok(wrap(t)),
         _ => match t.functor() {
             Some((n, a)) if denied(n.name()) => Err(refused(n, a + extra)),
+            Some((n, a)) if extra > 0 && renamed(n.name(), a + extra).is_some() => Ok(wrap(t)),
             Some(_) if extra == 0 => goal(t, 0),
             Some(_) => Ok(t.clone()),
             None => Ok(wrap(t)),
@@ -222,11 +335,6 @@ fn goal(t: &Term, depth: usize) -> Result<Term, KrError> {
         }
         ("->", 2) => Term::compound(name, vec![Term::compound("call", vec![sub(0)?]), sub(1)?]),
         ("*->", 2) => Term::compound(",", vec![sub(0)?, sub(1)?]),
-        ("is", 2) => Term::compound("$goal_is", args.to_vec()),
-        ("<" | ">" | "=<" | ">=" | "=:=" | "=\\=", 2) => Term::compound(
-            "$goal_cmp",
-            vec![Term::Atom(name), args[0].clone(), args[1].clone()],
-        ),
         ("bagof" | "setof", 3) => {
             let mut g = &args[1];
             let mut vars = Vec::new();
@@ -238,8 +346,10 @@ fn goal(t: &Term, depth: usize) -> Result<Term, KrError> {
             for v in vars.into_iter().rev() {
                 inner = Term::compound("^", vec![v, inner]);
             }
-            Term::compound(name, vec![args[0].clone(), inner, args[2].clone()])
+            let g = [args[0].clone(), inner, args[2].clone()];
+            rename(name, &g).unwrap_or_else(|| Term::compound(name, g.to_vec()))
         }
+        _ if renamed(n, arity).is_some() => rename(name, args).unwrap_or_else(|| t.clone()),
         _ => {
             let meta = meta_args(n, arity);
             if meta.is_empty() {
