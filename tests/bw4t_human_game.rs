@@ -186,7 +186,9 @@ impl Game {
                 acted.push((name.clone(), a));
             }
             for m in out.messages {
-                next.entry(m.receiver.clone()).or_default().push(m);
+                next.entry(m.receiver.name().to_string())
+                    .or_default()
+                    .push(m);
             }
         }
         for (name, action) in acted {

@@ -6,7 +6,6 @@ use goal::mas::system::load_mas;
 use goal::mas::trace::TraceWriter;
 use goal::mas::{EndReason, RunSummary};
 use std::io::Write;
-use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
 #[derive(Clone, Default)]
