@@ -839,6 +839,26 @@ fn messages_update_the_mental_model_of_their_sender() {
 }
 
 #[test]
+fn an_open_question_received_is_deleted_like_any_message() {
+    // An interrogative send may leave variables open; the receiver must be able to clear it.
+    let src = "main module { program [order=linearall] {
+        forall bel(received(X, int(M))) do delete(received(X, int(M))) + print(asked(X)).
+        if bel(received(_, _)) then print(left).
+    } }";
+    let mut a = agent_with(src, "a", &["b"], 1);
+    let p = printed_after(&mut a, &[msg("b", "int(at(_, red))")]);
+    assert_eq!(p, ["asked(b)"]);
+    // Any other delete with variables is still a runtime error.
+    let src = "main module { program { if bel(received(_, int(M))) then delete(seen(M)). } }";
+    let mut a = agent_with(src, "a", &["b"], 1);
+    let o = step(&mut a, &[], &[msg("b", "int(at(_, red))")]);
+    match o.stopped {
+        Some(StopReason::Error(e)) => assert!(e.message.contains("is not ground"), "{e:?}"),
+        other => panic!("expected a runtime error, got {other:?}"),
+    }
+}
+
+#[test]
 fn all_needs_every_model_and_some_any() {
     let src = "main module { program [order=linearall] {
         forall allother.bel(p(X)), not(bel(seen(allother(X)))) do print(allother(X)) + insert(seen(allother(X))).

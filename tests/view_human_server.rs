@@ -120,7 +120,7 @@ fn bad_player_requests_get_clear_errors_and_the_run_goes_on() {
             "not a term",
         ),
         (
-            &format!("{{\"token\": \"{mine}\", \"request\": \"sendMessage(all, int(at(_, 'RoomA1')))\"}}"),
+            &format!("{{\"token\": \"{mine}\", \"request\": \"goTo(_)\"}}"),
             "leaves something open",
         ),
         (&"x".repeat(20_000), "longer than"),
@@ -303,14 +303,20 @@ fn two_people_play_a_robot_each() {
     );
     let sb = json(&url, &format!("/api/play?token={tb}"));
     assert_eq!(sb["you"], "Human2");
-    // A question of the message list that names everything.
-    let qa = post(
-        &url,
-        "/api/play/request",
-        json!({"token": ta, "request": "sendMessage(all, int(willBeLong('Human2')))"}),
-    );
-    assert_eq!(qa.0, 202, "{qa:?}");
-    assert_eq!(answered(&url, ta, &qa.1["id"])["state"], "applied");
+    // A question of the message list that names everything, and one with an open subject
+    // (the agents receive it with a variable, and forget it like any other message).
+    for question in [
+        "sendMessage(all, int(willBeLong('Human2')))",
+        "sendMessage(all, int(at(_, 'RoomA1')))",
+    ] {
+        let qa = post(
+            &url,
+            "/api/play/request",
+            json!({"token": ta, "request": question}),
+        );
+        assert_eq!(qa.0, 202, "{qa:?}");
+        assert_eq!(answered(&url, ta, &qa.1["id"])["state"], "applied");
+    }
     let ra = post(
         &url,
         "/api/play/request",
@@ -352,9 +358,10 @@ fn two_people_play_a_robot_each() {
         .iter()
         .map(|r| r["request"].as_str().unwrap())
         .collect();
-    assert_eq!(mine.len(), 2, "{mine:?}");
+    assert_eq!(mine.len(), 3, "{mine:?}");
     assert_eq!(mine[0], "goTo('RoomA1')");
-    assert_eq!(mine[1], "sendMessage(all,int(willBeLong('Human2')))");
+    assert!(mine[1].starts_with("sendMessage(all,int(at(_"), "{mine:?}");
+    assert_eq!(mine[2], "sendMessage(all,int(willBeLong('Human2')))");
     assert_eq!(served.interrupt(), Some(130));
 
     // The trace has each request for its own robot, and each robot's agent acted on it.

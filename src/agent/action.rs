@@ -45,9 +45,14 @@ impl Core {
                     self.check_goals()?;
                     return Ok(Outcome::Done { real: true });
                 }
-                let u = ground(s, t, "delete")?;
+                // Not `ground`: a received open question is deleted with its variables (the
+                // mental state checks the rest).
+                let u = s.apply(t);
                 let mut ev = Vec::new();
-                self.ms.delete(&u, &mut ev)?;
+                self.ms.delete(&u, &mut ev).map_err(|mut f| {
+                    f.binding.get_or_insert_with(|| show_subst(s));
+                    f
+                })?;
                 self.changes(ev);
                 self.done_with(|| Term::compound("delete", vec![u.clone()]));
                 self.check_goals()?;

@@ -90,6 +90,17 @@ impl Mailbox {
         self.facts.delete(fact)
     }
 
+    /// The stored mail fact `fact` is a variant of: an interrogative message may be open
+    /// (`int(at(_, red))`), and a rule deleting it names it with variables.
+    pub fn variant_of(&self, fact: &Term) -> Option<Term> {
+        let (name, arity) = fact.functor()?;
+        self.held
+            .iter()
+            .chain(self.facts.facts_of(name, arity))
+            .find(|f| f.is_variant(fact))
+            .cloned()
+    }
+
     /// Removes the mail fact that `pattern` stands for under `s`, found without building it:
     /// a rule deleting the message its condition matched. `None` when `pattern` is no mail
     /// fact held or among the first [`SCAN`] facts of its predicate; the caller then takes the

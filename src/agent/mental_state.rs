@@ -12,6 +12,7 @@ use super::models::Models;
 use super::percepts::PerceptBase;
 use super::trace::Event;
 use crate::term::{well_known as wk, Subst, Term};
+use std::borrow::Cow;
 use std::cell::RefCell;
 use std::sync::Arc;
 
@@ -362,11 +363,11 @@ impl MentalState {
         Ok(())
     }
 
-    /// Removes the positive literals of a ground conjunction.
+    /// Removes the positive literals of a ground conjunction. A literal with variables is
+    /// allowed only where it names a stored message that has them itself (an open question):
+    /// that very message is removed.
     pub fn delete(&mut self, u: &Term, events: &mut Vec<Event>) -> Result<(), Fault> {
-        if !u.is_ground() {
-            return Err(Fault::new(format!("delete {u} is not ground")));
-        }
+        let mut facts: Vec<Cow<'_, Term>> = Vec::new();
         for lit in u.conjuncts() {
             if lit.is_functor(wk::TRUE, 0) {
                 continue;
@@ -376,7 +377,17 @@ impl MentalState {
                     "not(...) is not allowed in delete: {u}"
                 )));
             }
-            self.remove_fact(lit, events);
+            if lit.is_ground() {
+                facts.push(Cow::Borrowed(lit));
+                continue;
+            }
+            match is_mail_fact(lit).then(|| self.mailbox.variant_of(lit)) {
+                Some(Some(stored)) => facts.push(Cow::Owned(stored)),
+                _ => return Err(Fault::new(format!("delete({u}) is not ground"))),
+            }
+        }
+        for f in &facts {
+            self.remove_fact(f, events);
         }
         Ok(())
     }

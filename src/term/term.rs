@@ -358,6 +358,34 @@ impl Term {
         true
     }
 
+    /// True when `self` and `other` are equal up to a consistent renaming of variables (an
+    /// open question stored in the mailbox and the term a query answer made of it).
+    pub fn is_variant(&self, other: &Term) -> bool {
+        let mut renamed: Vec<(Sym, Sym)> = Vec::new();
+        let mut stack: Stack<(&Term, &Term)> = smallvec![(self, other)];
+        while let Some(pair) = stack.pop() {
+            match pair {
+                (Term::Var(x), Term::Var(y)) => {
+                    match renamed.iter().find(|(a, b)| a == x || b == y) {
+                        Some((a, b)) if a != x || b != y => return false,
+                        Some(_) => {}
+                        None => renamed.push((*x, *y)),
+                    }
+                }
+                (Term::Compound(c), Term::Compound(d)) => {
+                    if c.name != d.name || c.args.len() != d.args.len() {
+                        return false;
+                    }
+                    stack.extend(c.args.iter().zip(d.args.iter()));
+                }
+                (Term::Var(_), _) | (_, Term::Var(_)) => return false,
+                (a, b) if a != b => return false,
+                _ => {}
+            }
+        }
+        true
+    }
+
     /// A copy of the term for messages: parts nested deeper than `max_depth`, and everything
     /// after the first `max_nodes` sub-terms, are replaced by the atom `...` (built without
     /// recursion, so the result is small and shallow whatever the input).

@@ -3,6 +3,7 @@
 //! next tick boundary, and what became of each (applied, or refused and why) for the page.
 
 use crate::mas::input::{parse_request, Input};
+use crate::term::{Sym, Term};
 use serde_json::{json, Value};
 use std::collections::VecDeque;
 use std::sync::{Mutex, MutexGuard};
@@ -194,11 +195,9 @@ impl Players {
         robot.holder = Some((token.to_string(), now));
         let entity = robot.entity.clone();
         let request = parse_request(text).map_err(|e| refuse(400, e))?;
-        // A message with an open subject (a question such as `int(at(_, Room))`) reaches the
-        // agents with a variable in it, and the agents that delete what they received stop on
-        // it (a deleted belief must be ground): the page offers no such message, and the
-        // server takes none.
-        if !request.is_ground() {
+        // Only a question (`sendMessage(To, int(at(_, 'RoomA1')))`) may leave its subject open,
+        // as an agent's interrogative send may; every other request names everything.
+        if !request.is_ground() && !is_question(&request) {
             return Err(refuse(
                 400,
                 format!(
@@ -307,6 +306,12 @@ fn outcome_json(o: &Outcome) -> Value {
     json!({"id": o.id, "request": o.request, "state": state, "tick": tick, "reason": reason})
 }
 
+/// True for a message request whose content is a question (`int(...)`).
+fn is_question(request: &Term) -> bool {
+    request.is_functor(Sym::intern("sendMessage"), 2)
+        && request.args()[1].is_functor(Sym::intern("int"), 1)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -349,8 +354,12 @@ mod tests {
         assert_eq!(p.request("nobody", "putDown").unwrap_err().status, 403);
         let t = p.take("Human2", None).unwrap();
         assert_eq!(p.request(&t, "goTo(").unwrap_err().status, 400);
-        let open = p.request(&t, "sendMessage(all, int(at(_, 'RoomA1')))");
+        let open = p.request(&t, "goTo(_)");
         assert!(open.unwrap_err().message.contains("leaves something open"));
+        let question = p.request(&t, "sendMessage(all, int(at(_, 'RoomA1')))");
+        assert!(question.is_ok(), "{question:?}");
+        assert_eq!(p.drain().len(), 1);
+        p.applied(5, &Ok(()));
         let a = p.request(&t, "goTo('RoomA1')").unwrap();
         let b = p.request(&t, "pickUp(3)").unwrap();
         assert!(b > a);

@@ -158,10 +158,7 @@ function loadVocabulary() {
     play.vocab = v;
     const sel = $('msgpattern');
     sel.textContent = '';
-    // Questions leave their subject open (`_`); a HumanBot's request is a ground term, so the
-    // list offers the messages that name everything.
     for (const m of v.messages) {
-      if (m.pattern.includes('_')) continue;
       sel.appendChild(pel('option', { value: m.pattern, title: m.act }, m.sentence.replace(/\{([A-Za-z]+)\}/g, (_, slot) => '[' + slot.toLowerCase() + ']')));
     }
     drawMessageSlots();
