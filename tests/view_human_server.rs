@@ -7,32 +7,13 @@
 mod view_support;
 
 use serde_json::{json, Value};
-use std::io::{Read, Write};
-use std::net::TcpStream;
 use std::time::{Duration, Instant};
 use view_support::*;
 
 /// `method path` with `body`: (status, JSON answer).
 fn send(url: &str, method: &str, path: &str, body: &str) -> (u16, Value) {
-    let hostport = url.trim_start_matches("http://").trim_end_matches('/');
-    let mut s = TcpStream::connect(hostport).expect("connect to the view");
-    s.set_read_timeout(Some(Duration::from_secs(60))).unwrap();
-    write!(
-        s,
-        "{method} {path} HTTP/1.0\r\nHost: {hostport}\r\nContent-Type: application/json\r\n\
-         Content-Length: {}\r\n\r\n{body}",
-        body.len()
-    )
-    .unwrap();
-    let mut text = String::new();
-    let _ = s.read_to_string(&mut text);
-    let status = text
-        .split_whitespace()
-        .nth(1)
-        .and_then(|c| c.parse().ok())
-        .unwrap_or(0);
-    let body = text.split_once("\r\n\r\n").map_or("", |(_, b)| b);
-    (status, serde_json::from_str(body).unwrap_or(Value::Null))
+    let (status, text) = http_with(method, url, path, body);
+    (status, serde_json::from_str(&text).unwrap_or(Value::Null))
 }
 
 fn post(url: &str, path: &str, body: Value) -> (u16, Value) {

@@ -97,6 +97,11 @@ impl Drop for Served {
 
 /// One HTTP/1.0 request to `url` + `path`: (status, body).
 pub fn http(method: &str, url: &str, path: &str) -> (u16, String) {
+    http_with(method, url, path, "")
+}
+
+/// One HTTP/1.0 request to `url` + `path` with a JSON `body`: (status, body).
+pub fn http_with(method: &str, url: &str, path: &str, body: &str) -> (u16, String) {
     let hostport = url
         .trim_start_matches("http://")
         .trim_end_matches('/')
@@ -105,7 +110,9 @@ pub fn http(method: &str, url: &str, path: &str) -> (u16, String) {
     s.set_read_timeout(Some(Duration::from_secs(60))).unwrap();
     write!(
         s,
-        "{method} {path} HTTP/1.0\r\nHost: {hostport}\r\nContent-Length: 0\r\n\r\n"
+        "{method} {path} HTTP/1.0\r\nHost: {hostport}\r\nContent-Type: application/json\r\n\
+         Content-Length: {}\r\n\r\n{body}",
+        body.len()
     )
     .unwrap();
     let mut text = String::new();
@@ -142,21 +149,24 @@ pub fn browser() -> Option<PathBuf> {
     None
 }
 
+/// The flags of every headless chromium the tests start.
+pub const HEADLESS: &[&str] = &[
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--no-first-run",
+    "--window-size=1400,900",
+];
+
 fn chromium(browser: &Path, profile: &Path) -> Command {
     let mut c = Command::new(browser);
-    c.args([
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-background-networking",
-        "--disable-component-update",
-        "--disable-sync",
-        "--no-first-run",
-        "--window-size=1400,900",
-    ])
-    .arg(format!("--user-data-dir={}", profile.display()))
-    .stdin(Stdio::null())
-    .stderr(Stdio::null());
+    c.args(HEADLESS)
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .stdin(Stdio::null())
+        .stderr(Stdio::null());
     c
 }
 
