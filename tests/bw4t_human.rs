@@ -204,6 +204,9 @@ fn requests_are_refused_with_the_reason_at_once() {
         "sendMessage(X, imp(in('Human1', 'RoomA1')))",
     );
     assert!(e.contains("unbound variables"), "{e}");
+    // Only a question may leave something open: a statement that does would stop the agents.
+    let e = refused(&mut bw, "Human1", "sendMessage(all, in('Human1', _))");
+    assert!(e.contains("unbound variables"), "{e}");
     let e = refused(&mut bw, "Human1", "navigateObstacles");
     assert!(e.contains("navigateObstacles needs a goTo"), "{e}");
     // A question of the message list leaves what it asks about open.

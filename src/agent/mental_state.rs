@@ -12,7 +12,6 @@ use super::models::Models;
 use super::percepts::PerceptBase;
 use super::trace::Event;
 use crate::term::{well_known as wk, Subst, Term};
-use std::borrow::Cow;
 use std::cell::RefCell;
 use std::sync::Arc;
 
@@ -367,26 +366,28 @@ impl MentalState {
     /// allowed only where it names a stored message that has them itself (an open question):
     /// that very message is removed.
     pub fn delete(&mut self, u: &Term, events: &mut Vec<Event>) -> Result<(), Fault> {
-        let mut facts: Vec<Cow<'_, Term>> = Vec::new();
-        for lit in u.conjuncts() {
-            if lit.is_functor(wk::TRUE, 0) {
-                continue;
-            }
+        let lits = u.conjuncts();
+        // The stored messages that the open literals name (allocated only when there are any).
+        let mut open = Vec::new();
+        for lit in &lits {
             if lit.is_functor(wk::NOT, 1) {
                 return Err(Fault::new(format!(
                     "not(...) is not allowed in delete: {u}"
                 )));
             }
-            if lit.is_ground() {
-                facts.push(Cow::Borrowed(lit));
-                continue;
-            }
-            match is_mail_fact(lit).then(|| self.mailbox.variant_of(lit)) {
-                Some(Some(stored)) => facts.push(Cow::Owned(stored)),
-                _ => return Err(Fault::new(format!("delete({u}) is not ground"))),
+            if !lit.is_ground() {
+                match is_mail_fact(lit).then(|| self.mailbox.variant_of(lit)) {
+                    Some(Some(stored)) => open.push(stored),
+                    _ => return Err(Fault::new(format!("delete({u}) is not ground"))),
+                }
             }
         }
-        for f in &facts {
+        for lit in lits {
+            if lit.is_ground() && !lit.is_functor(wk::TRUE, 0) {
+                self.remove_fact(lit, events);
+            }
+        }
+        for f in &open {
             self.remove_fact(f, events);
         }
         Ok(())

@@ -8,7 +8,7 @@
 
 use super::world::World;
 use crate::env::{PerceptDecl, PerceptType};
-use crate::term::Term;
+use crate::term::{Sym, Term};
 
 /// Requests that may wait for the next batch per robot; more are refused.
 pub const MAX_REQUESTS: usize = 100;
@@ -28,6 +28,15 @@ pub const REQUESTS: &[&str] = &[
     "pickUpEPartner/0",
     "dropEPartner/0",
 ];
+
+/// True for the one request that may keep variables: a question of the message list to a named
+/// receiver (`sendMessage(all, int(at(_, Room)))`), as an agent's interrogative send may leave
+/// what it asks about open. Everything else a person asks for names its things.
+pub fn may_stay_open(request: &Term) -> bool {
+    request.is_functor(Sym::intern("sendMessage"), 2)
+        && request.args()[0].is_ground()
+        && request.args()[1].is_functor(Sym::intern("int"), 1)
+}
 
 /// The declarations of the request percepts: each request is in exactly one batch (the next),
 /// which is an always-percept of the requests made since the last batch.
@@ -59,10 +68,7 @@ impl World {
         if !REQUESTS.contains(&key.as_str()) {
             return Err(unknown_request(request));
         }
-        // A question of the message list leaves what it asks about open (`int(at(_, Room))`);
-        // everything else a person asks for names its things.
-        let open_ok = key == "sendMessage/2" && request.args()[0].is_ground();
-        if !open_ok && !request.is_ground() {
+        if !request.is_ground() && !may_stay_open(request) {
             return Err(format!("request `{request}` has unbound variables"));
         }
         if robot.requests.len() >= MAX_REQUESTS {

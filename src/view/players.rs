@@ -3,7 +3,6 @@
 //! next tick boundary, and what became of each (applied, or refused and why) for the page.
 
 use crate::mas::input::{parse_request, Input};
-use crate::term::{Sym, Term};
 use serde_json::{json, Value};
 use std::collections::VecDeque;
 use std::sync::{Mutex, MutexGuard};
@@ -197,7 +196,7 @@ impl Players {
         let request = parse_request(text).map_err(|e| refuse(400, e))?;
         // Only a question (`sendMessage(To, int(at(_, 'RoomA1')))`) may leave its subject open,
         // as an agent's interrogative send may; every other request names everything.
-        if !request.is_ground() && !is_question(&request) {
+        if !request.is_ground() && !crate::bw4t::human::may_stay_open(&request) {
             return Err(refuse(
                 400,
                 format!(
@@ -304,12 +303,6 @@ fn outcome_json(o: &Outcome) -> Value {
         Some((t, Err(e))) => ("refused", Some(*t), Some(e.as_str())),
     };
     json!({"id": o.id, "request": o.request, "state": state, "tick": tick, "reason": reason})
-}
-
-/// True for a message request whose content is a question (`int(...)`).
-fn is_question(request: &Term) -> bool {
-    request.is_functor(Sym::intern("sendMessage"), 2)
-        && request.args()[1].is_functor(Sym::intern("int"), 1)
 }
 
 #[cfg(test)]
