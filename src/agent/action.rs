@@ -157,8 +157,14 @@ impl Core {
             self.ms.attention.current_mut()
         };
         base.add(Goal::new(g.clone()));
+        let attention = if top_level {
+            0
+        } else {
+            self.ms.attention.depth() - 1
+        };
         self.changes(vec![Event::GoalAdopted {
             goal: g.to_string(),
+            attention,
         }]);
         self.done(&act)?;
         Ok(Outcome::Done { real: true })
@@ -182,6 +188,7 @@ impl Core {
             for g in removed {
                 ev.push(Event::GoalDropped {
                     goal: g.term.to_string(),
+                    attention: i,
                 });
             }
         }

@@ -439,9 +439,11 @@ impl MentalState {
             self.attention
                 .current_mut()
                 .remove_where(|g| achieved.contains(&g.term));
+            let attention = self.attention.depth() - 1;
             for g in achieved {
                 events.push(Event::GoalAchieved {
                     goal: g.to_string(),
+                    attention,
                 });
             }
         }

@@ -9,7 +9,7 @@ use super::error::{Fault, RuntimeError};
 use super::goals::{Goal, GoalBase};
 use super::program::{Act, Body, ModuleDef, Program};
 use super::rule::Answer;
-use super::trace::Event;
+use super::trace::{Event, TraceLevel};
 use super::watch::Observed;
 use crate::syntax::ast::{ExitCondition, Focus, Order};
 use crate::term::{Subst, Term};
@@ -136,6 +136,9 @@ impl Core {
         self.event(Event::ModuleEntered {
             module: m.name.clone(),
         });
+        if pushed_focus {
+            self.attention_pushed(&m.name, m.focus);
+        }
         self.watch(Observed::ModuleEntered(&m.name));
         let mut ev = Vec::new();
         let before = self.ms.beliefs.len();
@@ -403,10 +406,35 @@ impl Core {
         Ok(())
     }
 
+    /// Records the attention set just pushed for `module` (with the goals it starts with).
+    fn attention_pushed(&mut self, module: &str, focus: Focus) {
+        if self.level < TraceLevel::Changes {
+            return;
+        }
+        let focus = match focus {
+            Focus::None => "none",
+            Focus::New => "new",
+            Focus::Select => "select",
+            Focus::Filter => "filter",
+        };
+        let set = self.ms.attention.current();
+        let goals = set.goals().iter().map(|g| g.term.to_string()).collect();
+        self.event(Event::AttentionPushed {
+            module: module.to_string(),
+            focus: focus.to_string(),
+            attention: self.ms.attention.depth() - 1,
+            goals,
+        });
+    }
+
     /// Leaves a named module: defocus and goal check.
     fn leave(&mut self, prog: &Program, f: &ModFrame) -> Result<(), Fault> {
         if let Some(m) = f.module {
             if f.pushed_focus {
+                self.event(Event::AttentionPopped {
+                    module: prog.modules[m].name.clone(),
+                    attention: self.ms.attention.depth() - 1,
+                });
                 self.ms.attention.pop();
                 self.check_goals()?;
             }

@@ -13,7 +13,9 @@ pub enum TraceLevel {
     Rules,
 }
 
-/// One thing that happened in a cycle. Terms are printed as Prolog text.
+/// One thing that happened in a cycle. Terms are printed as Prolog text. `attention` numbers an
+/// attention set by its place on the agent's attention stack: 0 is the top-level goal base, 1 the
+/// set pushed by the first module with a focus, and so on.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "event", rename_all = "snake_case")]
 pub enum Event {
@@ -42,11 +44,32 @@ pub enum Event {
     /// A percept left the percept base.
     PerceptRemoved { percept: String },
     /// A goal was adopted.
-    GoalAdopted { goal: String },
+    GoalAdopted {
+        goal: String,
+        #[serde(skip_serializing_if = "is_top_level")]
+        attention: usize,
+    },
     /// A goal was dropped by `drop`.
-    GoalDropped { goal: String },
+    GoalDropped {
+        goal: String,
+        #[serde(skip_serializing_if = "is_top_level")]
+        attention: usize,
+    },
     /// A goal was achieved (blind commitment removed it).
-    GoalAchieved { goal: String },
+    GoalAchieved {
+        goal: String,
+        #[serde(skip_serializing_if = "is_top_level")]
+        attention: usize,
+    },
+    /// Entering a module with a focus pushed attention set number `attention` holding `goals`.
+    AttentionPushed {
+        module: String,
+        focus: String,
+        attention: usize,
+        goals: Vec<String>,
+    },
+    /// Leaving a module with a focus popped its attention set, number `attention`.
+    AttentionPopped { module: String, attention: usize },
     /// A mailbox fact was added.
     MailAdded { fact: String },
     /// A mailbox fact was removed.
@@ -63,4 +86,10 @@ pub enum Event {
     Error { message: String },
     /// The agent stopped.
     Stopped { reason: String },
+}
+
+/// True for the top-level goal base (attention set 0), whose number goal events leave out:
+/// traces of programs without focus read as they did before attention sets were recorded.
+fn is_top_level(attention: &usize) -> bool {
+    *attention == 0
 }

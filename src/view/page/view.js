@@ -13,15 +13,26 @@ const SVG = 'http://www.w3.org/2000/svg';
 
 // ---------------------------------------------------------------- the model: records to state
 
+// An attention set: the goals of the top-level base (module null) or of a module with a focus.
+function newSet(module, focus, goals) { return { module, focus, goals: new Set(goals) }; }
+
+// `attention` is the agent's attention stack, the top-level goal base first.
 function newMind() {
-  return { beliefs: new Set(), goals: new Set(), percepts: new Set(), mail: new Set(),
+  return { beliefs: new Set(), attention: [newSet(null, null)], percepts: new Set(), mail: new Set(),
     stack: [], module: null, rule: null, actions: [], errors: [], stopped: null };
 }
 
 function copyMind(m) {
-  return { beliefs: new Set(m.beliefs), goals: new Set(m.goals), percepts: new Set(m.percepts),
-    mail: new Set(m.mail), stack: m.stack.slice(), module: m.module, rule: m.rule,
+  return { beliefs: new Set(m.beliefs), attention: m.attention.map((a) => newSet(a.module, a.focus, a.goals)),
+    percepts: new Set(m.percepts), mail: new Set(m.mail), stack: m.stack.slice(), module: m.module, rule: m.rule,
     actions: m.actions.slice(), errors: m.errors.slice(), stopped: m.stopped };
+}
+
+// The goals of attention set `i` (absent in the trace: the top-level base, 0).
+function goalsOf(m, i) {
+  i = i || 0;
+  while (m.attention.length <= i) m.attention.push(newSet('?', '?'));
+  return m.attention[i].goals;
 }
 
 function newState() { return { world: new Map(), minds: new Map(), tick: 0 }; }
@@ -45,8 +56,13 @@ function applyEvent(m, e, tick) {
   switch (e.event) {
     case 'belief_inserted': m.beliefs.add(e.fact); break;
     case 'belief_deleted': m.beliefs.delete(e.fact); break;
-    case 'goal_adopted': m.goals.add(e.goal); break;
-    case 'goal_dropped': case 'goal_achieved': m.goals.delete(e.goal); break;
+    case 'goal_adopted': goalsOf(m, e.attention).add(e.goal); break;
+    case 'goal_dropped': case 'goal_achieved': goalsOf(m, e.attention).delete(e.goal); break;
+    case 'attention_pushed':
+      m.attention.length = Math.max(1, Math.min(m.attention.length, e.attention));
+      m.attention.push(newSet(e.module, e.focus, e.goals));
+      break;
+    case 'attention_popped': m.attention.length = Math.max(1, Math.min(m.attention.length, e.attention)); break;
     case 'percept_added': m.percepts.add(e.percept); break;
     case 'percept_removed': m.percepts.delete(e.percept); break;
     case 'mail_added': m.mail.add(e.fact); break;
@@ -309,10 +325,10 @@ function drawWorld(s) {
   if (p) p.textContent = done + ' of ' + seq.dataset.total + ' delivered';
 }
 
-// Shows `items` in the list `id`, changing only the entries that differ from what it shows
-// (moving the timeline a tick changes a few beliefs, not the hundreds shown).
+// Shows `items` in the list `id` (or the element itself), changing only the entries that differ
+// from what it shows (moving the timeline a tick changes a few beliefs, not the hundreds shown).
 function fillList(id, items, countId) {
-  const ul = $(id);
+  const ul = typeof id === 'string' ? $(id) : id;
   const all = Array.from(items);
   const shown = all.slice(0, MAX_LIST);
   if (all.length > MAX_LIST) shown.push('… ' + (all.length - MAX_LIST) + ' more');
@@ -360,11 +376,41 @@ function drawMind(s) {
     dl.append(dt, dd);
   }
   fillList('beliefs', Array.from(m.beliefs).sort(), 'nbeliefs');
-  fillList('goals', m.goals, 'ngoals');
+  drawGoals(m);
   fillList('percepts', Array.from(m.percepts).sort(), 'npercepts');
   fillList('mail', m.mail, 'nmail');
   fillList('actions', m.actions.slice().reverse());
   fillList('errors', m.errors.slice().reverse());
+}
+
+// The goals per attention set, the current set (top of the stack) first and highlighted, each
+// labelled with the module that owns it: the top-level base with the bottom module.
+function drawGoals(m) {
+  const box = $('goals');
+  const sets = m.attention.slice().reverse();
+  while (box.children.length > sets.length) box.removeChild(box.lastChild);
+  let total = 0;
+  sets.forEach((a, i) => {
+    let sec = box.children[i];
+    if (!sec) {
+      sec = document.createElement('section');
+      const h = document.createElement('h4');
+      const n = document.createElement('span'); n.className = 'n';
+      h.append(document.createElement('span'), ' ', n);
+      const ul = document.createElement('ul'); ul.className = 'terms';
+      sec.append(h, ul);
+      box.appendChild(sec);
+    }
+    const depth = sets.length - 1 - i;
+    const label = depth === 0 ? (m.stack[0] || 'top level') + ' (base)' : a.module + ' [focus=' + a.focus + ']';
+    sec.className = 'goalset' + (i === 0 ? ' current' : '');
+    sec.dataset.attention = depth;
+    sec.firstChild.firstChild.textContent = label;
+    sec.firstChild.lastChild.textContent = '(' + a.goals.size + ')';
+    fillList(sec.lastChild, a.goals);
+    total += a.goals.size;
+  });
+  $('ngoals').textContent = '(' + total + ')';
 }
 
 // The messages up to tick t, newest first; entries are reused from the last drawing and
