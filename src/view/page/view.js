@@ -222,7 +222,8 @@ const colour = (c) => COLORS[c] || '#999';
 function drawLayout(layout) {
   const g = $('static');
   g.textContent = '';
-  if (!layout) { $('world').hidden = true; $('nomap').hidden = false; return; }
+  // An SVG element has no `hidden` property: the attribute hides it (view.css).
+  if (!layout) { $('world').setAttribute('hidden', ''); $('nomap').hidden = false; return; }
   const [x0, y0, x1, y1] = layout.bounds;
   $('world').setAttribute('viewBox', [x0 - 1, y0 - 1, x1 - x0 + 2, y1 - y0 + 2].join(' '));
   for (const z of layout.zones) {
