@@ -14,18 +14,17 @@ use std::hash::{Hash, Hasher};
 
 /// Extends `base` with the bindings of `answer`.
 pub fn compose(base: &Subst, answer: &Subst) -> Subst {
-    let mut s = base.clone();
-    for (v, t) in answer.iter() {
-        s.bind(v, t.clone());
-    }
-    s
+    base.extended(answer)
 }
 
-/// An insertion-ordered set of answers (linear search while small, hashed beyond).
+/// An insertion-ordered set of answers (linear search while small, hashed beyond; the hash
+/// index is built only when a membership test needs it).
 #[derive(Default)]
 struct AnswerSet {
     items: Vec<Subst>,
     index: HashMap<u64, Vec<usize>>,
+    /// How many of `items` the index covers.
+    indexed: usize,
 }
 
 const HASH_FROM: usize = 16;
@@ -37,24 +36,30 @@ fn hash_of(s: &Subst) -> u64 {
 }
 
 impl AnswerSet {
+    /// Adds `s` unless present.
     fn push(&mut self, s: Subst) {
         if self.items.len() < HASH_FROM {
             if !self.items.contains(&s) {
                 self.items.push(s);
-                if self.items.len() == HASH_FROM {
-                    for (i, x) in self.items.iter().enumerate() {
-                        self.index.entry(hash_of(x)).or_default().push(i);
-                    }
-                }
             }
             return;
         }
-        let h = hash_of(&s);
-        let slot = self.index.entry(h).or_default();
+        while self.indexed < self.items.len() {
+            let h = hash_of(&self.items[self.indexed]);
+            self.index.entry(h).or_default().push(self.indexed);
+            self.indexed += 1;
+        }
+        let slot = self.index.entry(hash_of(&s)).or_default();
         if slot.iter().any(|&i| self.items[i] == s) {
             return;
         }
         slot.push(self.items.len());
+        self.indexed += 1;
+        self.items.push(s);
+    }
+
+    /// Adds `s`, known to differ from every answer present.
+    fn push_new(&mut self, s: Subst) {
         self.items.push(s);
     }
 }
@@ -111,7 +116,15 @@ pub fn evaluate(
                     cut = true;
                     break 'each;
                 }
-                next.push(a);
+                // Answers of one theta are distinct, and answers that only bind variables
+                // theta leaves free differ from those of every other theta: no search needed.
+                let fresh = a.iter().all(|(v, _)| theta.get(v).is_none());
+                let full = compose(theta, &a);
+                if fresh {
+                    next.push_new(full);
+                } else {
+                    next.push(full);
+                }
             }
         }
         if next.items.is_empty() {
@@ -130,8 +143,8 @@ pub fn evaluate(
     })
 }
 
-/// The answers of one literal under `theta` (each extends `theta`), at most `cap` per query
-/// (`cut` is set when a query stopped there).
+/// The distinct answers of one literal under `theta` (the bindings each adds to `theta`), at
+/// most `cap` per query (`cut` is set when a query stopped there).
 fn literal(
     cx: &CondCtx<'_>,
     lit: &Lit,
@@ -147,7 +160,7 @@ fn literal(
         query,
     } = lit
     else {
-        return Ok(vec![theta.clone()]);
+        return Ok(vec![Subst::new()]);
     };
     let ms = cx.ms;
     let mut raw = AnswerSet::default();
@@ -157,12 +170,20 @@ fn literal(
     match (op, about) {
         // Selectors other than this/self query the mental models of other agents.
         (_, Some(others)) => {
-            raw.items = super::models::answers(ms, others, *op, &theta.apply(query), theta)?
+            for a in super::models::answers(ms, others, *op, &theta.apply(query), theta)? {
+                raw.push(a);
+            }
         }
         (MentalOp::Bel, None) => {
             let (found, stopped) = ms.bel_upto_in(query, theta, cap)?;
             *cut |= stopped;
-            raw.items = found;
+            if found.len() == 1 {
+                raw.items = found;
+            } else {
+                for a in found {
+                    raw.push(a);
+                }
+            }
         }
         (MentalOp::Goal | MentalOp::AGoal | MentalOp::GoalA, None) => {
             let q = theta.apply(query);
@@ -214,12 +235,12 @@ fn literal(
     }
     if *negated {
         return Ok(if raw.items.is_empty() {
-            vec![theta.clone()]
+            vec![Subst::new()]
         } else {
             Vec::new()
         });
     }
-    Ok(raw.items.iter().map(|a| compose(theta, a)).collect())
+    Ok(raw.items)
 }
 
 /// The positive `goal`/`a-goal` literals of a condition, instantiated (for focus=filter).

@@ -11,7 +11,8 @@ use super::mailbox::{is_mail_fact, Mailbox};
 use super::models::Models;
 use super::percepts::PerceptBase;
 use super::trace::Event;
-use crate::term::{well_known as wk, Subst, Term};
+use crate::term::{well_known as wk, Subst, Sym, Term};
+use smallvec::{smallvec, SmallVec};
 use std::cell::RefCell;
 use std::sync::Arc;
 
@@ -131,15 +132,17 @@ impl MentalState {
         theta: &Subst,
         cap: usize,
     ) -> Result<(Vec<Subst>, bool), Fault> {
-        let whole = !theta.is_empty()
-            && q.functor()
-                .is_some_and(|(name, arity)| self.knowledge.resolves(name, arity))
+        if self.cannot_hold(q) {
+            return Ok((Vec::new(), false));
+        }
+        // A plain fact pattern goes the other way (instantiated, a ground one is a lookup), and
+        // so does a conjunction with negations that are lookups once instantiated.
+        let whole = q
+            .functor()
+            .is_some_and(|(name, arity)| self.knowledge.resolves(name, arity))
             && first_conjunct(q).functor().is_some()
-            && !segmented(q);
+            && !segmented(q, theta);
         if whole {
-            if self.cannot_hold(q) {
-                return Ok((Vec::new(), false));
-            }
             let bases = self.bases();
             let view = View::beliefs(&self.knowledge, &bases);
             let run = match self.engine.try_borrow_mut() {
@@ -163,7 +166,7 @@ impl MentalState {
         if self.cannot_hold(q) {
             return Ok((Vec::new(), false));
         }
-        if !segmented(q) {
+        if !segmented(q, &Subst::new()) {
             return self.bel_raw(q, cap);
         }
         let parts = q.conjuncts();
@@ -460,16 +463,17 @@ fn first_conjunct(q: &Term) -> &Term {
     first
 }
 
-/// True when [`MentalState::bel_upto`] runs `q` in segments: a conjunction with a negated
-/// conjunct (`not/1`, `\+/1`) and no cut.
-fn segmented(q: &Term) -> bool {
+/// True when [`MentalState::bel_upto`] runs `q` in segments: a conjunction without a cut with a
+/// negated conjunct (`not/1`, `\+/1`) whose variables `theta` or the conjuncts before it bind.
+/// Such a negation, once instantiated, is usually a ground lookup; one with a variable of its
+/// own (`not(p(X, _))`) is not, and the engine runs the whole conjunction at once.
+fn segmented(q: &Term, theta: &Subst) -> bool {
     let negation = |t: &Term| t.is_functor(wk::NOT, 1) || t.is_functor(wk::NAF, 1);
-    let mut has_negation = false;
+    let mut lookup = false;
+    let mut before: SmallVec<[&Term; 8]> = SmallVec::new();
     let mut cur = q;
-    let mut conjunction = false;
     loop {
         let (part, rest) = if cur.is_functor(wk::COMMA, 2) {
-            conjunction = true;
             (&cur.args()[0], Some(&cur.args()[1]))
         } else {
             (cur, None)
@@ -477,12 +481,26 @@ fn segmented(q: &Term) -> bool {
         if part.is_functor(wk::CUT, 0) {
             return false;
         }
-        has_negation |= negation(part);
+        if negation(part) && !lookup {
+            let mut bound = true;
+            part.for_each_var(&mut |v| {
+                bound &= theta.get(v).is_some() || before.iter().any(|b| mentions(b, v));
+            });
+            lookup = bound;
+        }
+        before.push(part);
         match rest {
             Some(r) => cur = r,
-            None => return conjunction && has_negation,
+            None => return before.len() > 1 && lookup,
         }
     }
+}
+
+/// True when variable `v` occurs in `t`.
+fn mentions(t: &Term, v: Sym) -> bool {
+    let mut found = false;
+    t.for_each_var(&mut |w| found |= w == v);
+    found
 }
 
 /// A query about goals, prepared once for all the goals it is asked of.
@@ -495,8 +513,6 @@ pub struct GoalQuery<'q> {
     /// True when nothing but goal facts can answer it: neither knowledge nor a built-in or
     /// control construct resolves its predicate (an undefined predicate fails).
     pub only_facts: bool,
-    /// The query's named variables in reading order, as the engine binds them.
-    vars: Vec<crate::term::Sym>,
 }
 
 impl<'q> GoalQuery<'q> {
@@ -507,14 +523,6 @@ impl<'q> GoalQuery<'q> {
             query: q,
             key,
             only_facts: key.is_some_and(|k| !knowledge.resolves(k.0, k.1)),
-            vars: if key.is_some() {
-                q.vars()
-                    .into_iter()
-                    .filter(|v| *v != wk::UNDERSCORE)
-                    .collect()
-            } else {
-                Vec::new()
-            },
         }
     }
 
@@ -534,21 +542,79 @@ impl<'q> GoalQuery<'q> {
         }
         let mut out: Vec<Subst> = Vec::new();
         for f in g.facts.iter().filter(|f| f.functor() == Some(key)) {
-            let mut s = Subst::new();
-            if s.unify(self.query, f, false) {
-                // Answers bind the query's variables in reading order, as the engine's do.
-                let mut a = Subst::new();
-                for v in &self.vars {
-                    let t = s.apply(&Term::Var(*v));
-                    if t != Term::Var(*v) {
-                        a.bind(*v, t);
-                    }
-                }
-                if !out.contains(&a) {
-                    out.push(a);
-                }
+            let mut a = Subst::new();
+            if match_fact(self.query, f, &mut a) && !out.contains(&a) {
+                out.push(a);
             }
         }
         Some(out)
+    }
+}
+
+/// Matches `pattern` against the ground `fact`, binding the pattern's variables (but `_`, which
+/// matches anything) in reading order, as the engine's answers do; false when they differ.
+fn match_fact(pattern: &Term, fact: &Term, s: &mut Subst) -> bool {
+    let mut work: SmallVec<[(&Term, &Term); 8]> = smallvec![(pattern, fact)];
+    while let Some((p, f)) = work.pop() {
+        match (p, f) {
+            (Term::Var(v), _) if *v == wk::UNDERSCORE => {}
+            (Term::Var(v), _) => match s.get(*v) {
+                Some(bound) if bound != f => return false,
+                Some(_) => {}
+                None => s.bind(*v, f.clone()),
+            },
+            (Term::Compound(p), Term::Compound(f)) => {
+                if p.name != f.name || p.args.len() != f.args.len() {
+                    return false;
+                }
+                // Reversed, so that the leftmost argument is matched first.
+                work.extend(p.args.iter().zip(f.args.iter()).rev());
+            }
+            _ => {
+                if p != f {
+                    return false;
+                }
+            }
+        }
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn term(text: &str) -> Term {
+        let mut r = crate::syntax::prolog::Reader::new("test");
+        r.term(text, 0).expect("term").term
+    }
+
+    fn matched(pattern: &str, fact: &str) -> Option<String> {
+        let mut s = Subst::new();
+        match_fact(&term(pattern), &term(fact), &mut s).then(|| {
+            s.iter()
+                .map(|(v, t)| format!("{}={t}", v.name()))
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+    }
+
+    #[test]
+    fn goal_facts_match_binding_variables_in_reading_order() {
+        assert_eq!(
+            matched("p(X, f(Y, Z), X)", "p(a, f(g(b), 1), a)").as_deref(),
+            Some("X=a Y=g(b) Z=1")
+        );
+        assert_eq!(matched("p(X, f(Y), X)", "p(a, f(b), c)"), None);
+        assert_eq!(matched("p(X, 2)", "p(a, 2.0)"), None);
+        assert_eq!(matched("p(X)", "q(a)"), None);
+        // The reader names each `_` apart; a bare `_` matches anything, as in the engine.
+        assert_eq!(
+            matched("p(_, _)", "p(a, b)").as_deref(),
+            Some("_G1=a _G2=b")
+        );
+        let bare = Term::compound("p", vec![Term::Var(wk::UNDERSCORE); 2]);
+        let mut s = Subst::new();
+        assert!(match_fact(&bare, &term("p(a, b)"), &mut s) && s.is_empty());
     }
 }

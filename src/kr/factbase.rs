@@ -137,9 +137,11 @@ impl FactBase {
         let Some((name, arity)) = pred_of(&fact) else {
             return false;
         };
-        if self.ids.contains_key(&fact) {
-            return false;
-        }
+        // One hash of the whole fact: the entry API both checks and inserts.
+        let slot = match self.ids.entry(fact) {
+            std::collections::hash_map::Entry::Occupied(_) => return false,
+            std::collections::hash_map::Entry::Vacant(v) => v,
+        };
         let id = match self.free.pop() {
             Some(id) => id,
             None => {
@@ -150,9 +152,10 @@ impl FactBase {
                 self.entries.len() as u32 - 1
             }
         };
+        let fact = slot.key().clone();
+        slot.insert(id);
         let (k1, k2) = (arg_key(&fact, 0), arg_key(&fact, 1));
-        self.entries[id as usize].term = Some(fact.clone());
-        self.ids.insert(fact, id);
+        self.entries[id as usize].term = Some(fact);
         let entries = &mut self.entries;
         push_back(entries, self.all.get_or_insert(EMPTY), ALL, id);
         push_back(

@@ -98,7 +98,10 @@
 //! table lookup.
 //! Output built-ins write to a buffer taken with [`Engine::take_output`]; `random/1` and friends
 //! use the engine's seeded ChaCha8 RNG. The solver's buffers are per thread and reused by every
-//! query, so an agent only holds its [`NativeEngine`] (limits, RNG, output buffer).
+//! query, so an agent only holds its [`NativeEngine`] (limits, RNG, output buffer, and the
+//! queries of its rule conditions as placed on the heap: [`NativeEngine::query_upto_in`] places
+//! a query once and copies its cells on later calls, with the bindings' values in cells of
+//! their own).
 
 pub mod choice;
 pub mod error;

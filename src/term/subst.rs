@@ -48,6 +48,18 @@ impl Subst {
         }
     }
 
+    /// This substitution with the bindings of `more` added (replacing bindings of the same
+    /// variables), allocated once.
+    pub fn extended(&self, more: &Subst) -> Subst {
+        let mut bindings = Vec::with_capacity(self.bindings.len() + more.bindings.len());
+        bindings.extend_from_slice(&self.bindings);
+        let mut s = Subst { bindings };
+        for (v, t) in more.iter() {
+            s.bind(v, t.clone());
+        }
+        s
+    }
+
     /// Removes the binding of `var`.
     pub fn unbind(&mut self, var: Sym) {
         self.bindings.retain(|(v, _)| *v != var);

@@ -167,28 +167,20 @@ pub(crate) struct Solver<'a, 'm> {
 }
 
 impl<'a, 'm> Solver<'a, 'm> {
-    /// Prepares `goal` for solving.
-    pub fn new(
+    /// Prepares the goal that `place` puts on the emptied store; `place` returns the goal's
+    /// cell, the query's variables and how many of them (the first ones) were bound before the
+    /// query ran (answers leave those out).
+    pub fn start(
         m: &'m mut Machine,
         cx: Ctx<'a>,
-        goal: &Term,
-        env: &Subst,
         occurs_check: bool,
+        place: impl FnOnce(&mut Store) -> (Cell, Vec<(Sym, Cell)>, usize),
     ) -> Self {
         m.reset();
         m.st.occurs_check = occurs_check;
         m.st.max_walk = cx.limits.max_heap_cells as usize;
         let next_check = CHECK_EVERY.min(cx.limits.max_inferences + 1);
-        // The variables `env` binds (to ground terms) are placed first and share their cells
-        // wherever the goal names them: the goal runs as `env` applied to it, without that
-        // term being built. Answers leave them out.
-        let mut vars = Vec::new();
-        for (v, t) in env.iter() {
-            let c = m.st.put_term(t, &mut vars);
-            vars.push((v, c));
-        }
-        let bound = vars.len();
-        let g = m.st.put_term(goal, &mut vars);
+        let (g, vars, bound) = place(&mut m.st);
         m.frames.push(Frame {
             goal: Goal::Call(g),
             next: NONE,

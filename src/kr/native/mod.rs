@@ -15,6 +15,7 @@ pub(crate) mod lists;
 pub(crate) mod machine;
 pub(crate) mod output;
 pub(crate) mod prelude;
+pub(crate) mod prepared;
 pub(crate) mod store;
 pub(crate) mod text;
 
@@ -43,6 +44,8 @@ pub struct NativeEngine {
     output: String,
     /// What `get_time/1` answers.
     pub clock: Clock,
+    /// The queries of rule conditions, placed once and copied onto the heap afterwards.
+    prepared: prepared::Cache,
     /// The distinct atoms this engine's queries made at run time, against
     /// `limits.max_new_atoms` (a set of this engine's own, so that the count never depends on
     /// what other agents or earlier runs in the process made).
@@ -69,6 +72,7 @@ impl NativeEngine {
             rng: ChaCha8Rng::seed_from_u64(seed),
             output: String::new(),
             clock: Clock::default(),
+            prepared: prepared::Cache::default(),
             made_atoms: HashSet::new(),
         }
     }
@@ -93,21 +97,24 @@ impl NativeEngine {
         query: &Term,
         each: &mut dyn FnMut(Subst) -> bool,
     ) -> KrResult<usize> {
-        self.solve_inner(view, query, &Subst::new(), true, each)
+        self.solve_inner(view, query, &Subst::new(), true, false, each)
     }
 
     /// [`NativeEngine::solve`] of `env` applied to `query` (`env` binds variables to ground
     /// terms; answers bind the other variables only); with `convert` false, answers are not
-    /// converted to terms (the callback gets empty substitutions).
+    /// converted to terms (the callback gets empty substitutions). With `reuse`, the query is
+    /// placed from the engine's cache of prepared queries (for queries asked many times).
     fn solve_inner(
         &mut self,
         view: &View,
         query: &Term,
         env: &Subst,
         convert: bool,
+        reuse: bool,
         each: &mut dyn FnMut(Subst) -> bool,
     ) -> KrResult<usize> {
         let lib = builtins::library();
+        let cache = &mut self.prepared;
         let mut run = |m: &mut Machine| -> KrResult<usize> {
             let cx = Ctx {
                 kn: view.knowledge,
@@ -120,7 +127,10 @@ impl NativeEngine {
                 clock: &mut self.clock,
                 made_atoms: &mut self.made_atoms,
             };
-            let mut s = Solver::new(m, cx, query, env, self.occurs_check);
+            let mut s = Solver::start(m, cx, self.occurs_check, |st| match reuse {
+                true => cache.place(st, query, env),
+                false => prepared::place_plain(st, query, env),
+            });
             let mut n = 0;
             let mut first = true;
             while s.next(first)? {
@@ -179,7 +189,9 @@ impl NativeEngine {
 
     /// [`NativeEngine::query_upto`] of `env` applied to `query`, without building that term:
     /// the answers bind the variables `env` leaves free. `env` must bind its variables to
-    /// ground terms (`None` otherwise: apply it and ask [`NativeEngine::query_upto`]).
+    /// ground terms (`None` otherwise: apply it and ask [`NativeEngine::query_upto`]). For the
+    /// long-lived queries of rule conditions: the query is placed on the heap once per engine
+    /// (kept by the address of `query`) and copied from there on later calls.
     pub fn query_upto_in(
         &mut self,
         view: &View,
@@ -191,7 +203,7 @@ impl NativeEngine {
             return None;
         }
         let mut out = Vec::new();
-        let run = self.solve_inner(view, query, env, true, &mut |s| {
+        let run = self.solve_inner(view, query, env, true, true, &mut |s| {
             out.push(s);
             out.len() < cap
         });
@@ -207,7 +219,7 @@ impl NativeEngine {
             return Ok(n > 0);
         }
         let mut found = false;
-        self.solve_inner(view, query, &Subst::new(), false, &mut |_| {
+        self.solve_inner(view, query, &Subst::new(), false, false, &mut |_| {
             found = true;
             false
         })?;
