@@ -38,10 +38,10 @@ impl Core {
                     // The message the rule matched, deleted without building it first.
                     if self.ms.record {
                         self.changes(vec![Event::MailDeleted {
-                            fact: f.to_string(),
+                            fact: f.clone().term().to_string(),
                         }]);
                     }
-                    self.done_with(|| Term::compound("delete", vec![f]));
+                    self.done_with(|| Term::compound("delete", vec![f.term()]));
                     self.check_goals()?;
                     return Ok(Outcome::Done { real: true });
                 }

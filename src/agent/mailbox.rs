@@ -8,13 +8,40 @@ use crate::term::{well_known as wk, Subst, Sym, Term};
 /// delete to the fact base's hash lookup.
 const SCAN: usize = 8;
 
+/// Nesting walked by recursion in [`same_under`]; deeper terms take the explicit stack.
+const SHALLOW: usize = 8;
+
 /// True when `pattern` under `s` is the ground term `fact` (walked side by side, nothing built).
 fn same_under(s: &Subst, pattern: &Term, fact: &Term) -> bool {
-    if pattern.functor() != fact.functor() {
-        return false;
+    same_shallow(s, pattern, fact, 0).unwrap_or_else(|| same_deep(s, pattern, fact))
+}
+
+/// [`same_under`] by recursion while the terms are shallow (messages are); `None` past
+/// [`SHALLOW`] levels.
+fn same_shallow(s: &Subst, pattern: &Term, fact: &Term, depth: usize) -> Option<bool> {
+    match (s.walk(pattern), fact) {
+        (Term::Var(_), _) => Some(false),
+        (Term::Compound(a), Term::Compound(b)) => {
+            if a.name != b.name || a.args.len() != b.args.len() {
+                return Some(false);
+            }
+            if depth >= SHALLOW {
+                return None;
+            }
+            for (p, f) in a.args.iter().zip(b.args.iter()) {
+                if !same_shallow(s, p, f, depth + 1)? {
+                    return Some(false);
+                }
+            }
+            Some(true)
+        }
+        (a, b) => Some(a == b),
     }
-    // Messages are small: the walk's stack stays inline.
-    let mut work: smallvec::SmallVec<[(&Term, &Term); 16]> = smallvec::smallvec![(pattern, fact)];
+}
+
+/// [`same_under`] with an explicit stack, for terms of any depth.
+fn same_deep(s: &Subst, pattern: &Term, fact: &Term) -> bool {
+    let mut work: Vec<(&Term, &Term)> = vec![(pattern, fact)];
     while let Some((p, f)) = work.pop() {
         match (s.walk(p), f) {
             (Term::Var(_), _) => return false,
@@ -34,6 +61,38 @@ fn same_under(s: &Subst, pattern: &Term, fact: &Term) -> bool {
     true
 }
 
+/// A mail fact [`Mailbox::delete_matching`] removed; a held `sent/2` fact is built only when
+/// someone asks for it (a trace, a watcher).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Deleted {
+    /// A fact of the fact base.
+    Fact(Term),
+    /// A held `sent(receiver, content)`.
+    Sent(Sym, Term),
+}
+
+impl Deleted {
+    /// The fact as a term.
+    pub fn term(self) -> Term {
+        match self {
+            Deleted::Fact(f) => f,
+            Deleted::Sent(r, c) => sent(&Term::Atom(r), &c),
+        }
+    }
+}
+
+/// True when `fact` is the held `sent(receiver, content)`.
+fn is_held((r, c): &(Sym, Term), fact: &Term) -> bool {
+    fact.is_functor(wk::SENT, 2) && fact.args()[0] == Term::Atom(*r) && fact.args()[1] == *c
+}
+
+/// True when `pattern` under `s` is the held `sent(receiver, content)`.
+fn held_under(s: &Subst, pattern: &Term, (r, c): &(Sym, Term)) -> bool {
+    pattern.is_functor(wk::SENT, 2)
+        && *s.walk(&pattern.args()[0]) == Term::Atom(*r)
+        && same_under(s, &pattern.args()[1], c)
+}
+
 /// A message from one agent to one receiver; `content` already carries the mood wrapper
 /// (`p`, `imp(p)` or `int(p)`). Agents are named by their interned names: routing a message
 /// compares and looks up symbols, and the text is read only where a name is shown.
@@ -51,11 +110,12 @@ pub struct Message {
 #[derive(Clone, Debug, Default)]
 pub struct Mailbox {
     facts: FactBase,
-    /// `sent/2` facts of sends in the running combo, not yet in `facts` (each surely new
-    /// there): a combo that sends and then deletes its own `sent/2` fact — the usual way to
-    /// pass something on — then never touches the fact base for it. Moved into `facts` by
-    /// [`Mailbox::settle`] before anything can read the mailbox.
-    held: Vec<Term>,
+    /// `sent/2` facts of sends in the running combo as (receiver, content), not yet in `facts`
+    /// (each surely new there): a combo that sends and then deletes its own `sent/2` fact —
+    /// the usual way to pass something on — then neither builds the fact nor touches the fact
+    /// base for it. Moved into `facts` by [`Mailbox::settle`] before anything can read the
+    /// mailbox.
+    held: Vec<(Sym, Term)>,
     /// The agent's conversations (their `session/4` facts are among `facts`); `None` when
     /// nothing in the program can see them (`Program::uses_sessions`): then they are not
     /// followed at all, which keeps a long-running agent's mailbox from growing with them.
@@ -83,7 +143,7 @@ impl Mailbox {
 
     /// Removes a mail fact; false when absent.
     pub fn delete(&mut self, fact: &Term) -> bool {
-        if let Some(k) = self.held.iter().position(|h| h == fact) {
+        if let Some(k) = self.held.iter().position(|h| is_held(h, fact)) {
             self.held.remove(k);
             return true;
         }
@@ -94,23 +154,22 @@ impl Mailbox {
     /// (`int(at(_, red))`), and a rule deleting it names it with variables.
     pub fn variant_of(&self, fact: &Term) -> Option<Term> {
         let (name, arity) = fact.functor()?;
-        self.held
-            .iter()
-            .chain(self.facts.facts_of(name, arity))
+        let held = self.held.iter().map(|(r, c)| sent(&Term::Atom(*r), c));
+        held.chain(self.facts.facts_of(name, arity).cloned())
             .find(|f| f.is_variant(fact))
-            .cloned()
     }
 
     /// Removes the mail fact that `pattern` stands for under `s`, found without building it:
     /// a rule deleting the message its condition matched. `None` when `pattern` is no mail
     /// fact held or among the first [`SCAN`] facts of its predicate; the caller then takes the
     /// general way (building the fact, which also reports what is not ground).
-    pub fn delete_matching(&mut self, pattern: &Term, s: &Subst) -> Option<Term> {
+    pub fn delete_matching(&mut self, pattern: &Term, s: &Subst) -> Option<Deleted> {
         if !is_mail_fact(pattern) {
             return None;
         }
-        if let Some(k) = self.held.iter().position(|h| same_under(s, pattern, h)) {
-            return Some(self.held.remove(k));
+        if let Some(k) = self.held.iter().position(|h| held_under(s, pattern, h)) {
+            let (r, c) = self.held.remove(k);
+            return Some(Deleted::Sent(r, c));
         }
         let (name, arity) = pattern.functor()?;
         let f = self
@@ -120,35 +179,41 @@ impl Mailbox {
             .find(|f| same_under(s, pattern, f))?
             .clone();
         self.facts.delete(&f);
-        Some(f)
+        Some(Deleted::Fact(f))
     }
 
-    /// Adds the `sent/2` fact of a send; false when already present. The fact is held back
-    /// (not yet in the fact base) while it is surely new: no `sent/2` fact is in the base and
-    /// none held is equal. Whoever reads the mailbox calls [`Mailbox::settle`] first.
-    pub fn hold_sent(&mut self, fact: Term) -> bool {
-        if self.held.contains(&fact) {
+    /// Adds the fact `sent(receiver, content)` of a send; false when already present. The
+    /// fact is held back (not built, not yet in the fact base) while it is surely new: no
+    /// `sent/2` fact is in the base and none held is equal. Whoever reads the mailbox calls
+    /// [`Mailbox::settle`] first.
+    pub fn hold_sent(&mut self, receiver: Sym, content: Term) -> bool {
+        if self
+            .held
+            .iter()
+            .any(|(r, c)| *r == receiver && *c == content)
+        {
             return false;
         }
         if self.facts.has_pred(wk::SENT, 2) {
             self.settle();
-            return self.facts.insert(fact);
+            return self.facts.insert(sent(&Term::Atom(receiver), &content));
         }
-        self.held.push(fact);
+        self.held.push((receiver, content));
         true
     }
 
     /// Moves the held `sent/2` facts into the fact base, in the order they were sent.
     pub fn settle(&mut self) {
-        for f in std::mem::take(&mut self.held) {
-            self.facts.insert(f);
+        // Drained, not taken: the buffer is kept for the next combo's sends.
+        for (r, c) in self.held.drain(..) {
+            self.facts.insert(sent(&Term::Atom(r), &c));
         }
     }
 
     /// True when the agent already sent `content` to `receiver`.
     pub fn has_sent(&self, receiver: &Term, content: &Term) -> bool {
         let f = sent(receiver, content);
-        self.held.contains(&f) || self.facts.contains(&f)
+        self.held.iter().any(|h| is_held(h, &f)) || self.facts.contains(&f)
     }
 }
 
@@ -178,13 +243,15 @@ mod tests {
         let mut mb = Mailbox::default();
         mb.insert(term("received(a, imp(token(1, 5)))"));
         mb.insert(term("received(a, imp(token(2, 5)))"));
-        assert!(mb.hold_sent(term("sent(b, imp(token(1, 4)))")));
+        assert!(mb.hold_sent(Sym::intern("b"), term("imp(token(1, 4))")));
+        assert!(!mb.hold_sent(Sym::intern("b"), term("imp(token(1, 4))")));
+        assert!(mb.has_sent(&term("b"), &term("imp(token(1, 4))")));
         let mut s = Subst::new();
         s.bind(Sym::intern("T"), Term::Int(2));
         s.bind(Sym::intern("K"), Term::Int(5));
         let pattern = term("received(a, imp(token(T, K)))");
         assert_eq!(
-            mb.delete_matching(&pattern, &s),
+            mb.delete_matching(&pattern, &s).map(Deleted::term),
             Some(term("received(a, imp(token(2, 5)))"))
         );
         // Gone: the same pattern now finds nothing.
@@ -192,7 +259,7 @@ mod tests {
         s.bind(Sym::intern("R"), Term::Int(4));
         let held = term("sent(b, imp(token(1, R)))");
         assert_eq!(
-            mb.delete_matching(&held, &s),
+            mb.delete_matching(&held, &s).map(Deleted::term),
             Some(term("sent(b, imp(token(1, 4)))"))
         );
         mb.settle();
@@ -202,5 +269,29 @@ mod tests {
         assert_eq!(mb.delete_matching(&open, &s), None);
         assert_eq!(mb.delete_matching(&term("at(a)"), &s), None);
         assert_eq!(mb.facts().len(), 1);
+    }
+
+    #[test]
+    fn deep_messages_are_compared_past_the_recursion_bound() {
+        let deep = |x: &str| {
+            let mut t = x.to_string();
+            for _ in 0..(3 * SHALLOW) {
+                t = format!("f({t}, g)");
+            }
+            term(&format!("received(a, {t})"))
+        };
+        let mut mb = Mailbox::default();
+        mb.insert(deep("1"));
+        let mut s = Subst::new();
+        s.bind(Sym::intern("X"), Term::Int(2));
+        // A difference at the bottom, then a match there.
+        assert_eq!(mb.delete_matching(&deep("X"), &s), None);
+        s = Subst::new();
+        s.bind(Sym::intern("X"), Term::Int(1));
+        assert_eq!(
+            mb.delete_matching(&deep("X"), &s).map(Deleted::term),
+            Some(deep("1"))
+        );
+        assert_eq!(mb.facts().len(), 0);
     }
 }

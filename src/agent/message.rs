@@ -123,17 +123,12 @@ impl Core {
                 receiver: r,
                 content: wrapped.clone(),
             });
-            let f = sent(&rt, &wrapped);
             // Held back while the combo runs: a `delete` of it later in the combo then costs
             // nothing (see `Mailbox::hold_sent`).
-            if record {
-                if self.ms.mailbox.hold_sent(f.clone()) {
-                    ev.push(Event::MailAdded {
-                        fact: f.to_string(),
-                    });
-                }
-            } else {
-                self.ms.mailbox.hold_sent(f);
+            if self.ms.mailbox.hold_sent(r, wrapped.clone()) && record {
+                ev.push(Event::MailAdded {
+                    fact: sent(&rt, &wrapped).to_string(),
+                });
             }
         }
         for e in ev {

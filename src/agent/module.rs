@@ -359,10 +359,11 @@ impl Core {
                             stack.push(Frame::Module(f));
                         }
                         act => {
-                            let s = c.answer.subst.clone();
+                            // The answer's substitution is lent to the action, not cloned.
+                            let s = &c.answer.subst;
                             let sent = self.out.env_actions.len();
                             let outcome = self
-                                .perform(prog, act, &s)
+                                .perform(prog, act, s)
                                 .and_then(|o| self.check_sizes().map(|_| o))
                                 .map_err(|e| {
                                     self.ms.mailbox.settle();
@@ -375,7 +376,7 @@ impl Core {
                             match outcome {
                                 Outcome::NotRun => {
                                     if self.why.is_some() {
-                                        let at = (c.block, c.rule);
+                                        let (at, s) = ((c.block, c.rule), s.clone());
                                         self.why_not_run(prog, stack, at, act, &s);
                                     }
                                     if let Some(Frame::Combo(c)) = stack.last_mut() {

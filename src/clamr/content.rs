@@ -142,7 +142,8 @@ pub fn validate(content: &Term) -> Result<(), String> {
             }
         }
     }
-    let mut stack = vec![content];
+    // Every message is checked on send: the work list of a usual (small) message stays inline.
+    let mut stack: smallvec::SmallVec<[&Term; 16]> = smallvec::smallvec![content];
     let mut seen = 0usize;
     while let Some(t) = stack.pop() {
         seen += 1;

@@ -188,6 +188,9 @@ impl<'a> Setup<'a> {
         let mut memory_checked = start;
         let steered = obs.steers();
         let mut env_finished = false;
+        let mut spare: Vec<usize> = Vec::new();
+        // The round's messages; the buffer is kept from round to round.
+        let mut sent: Vec<Message> = Vec::new();
         let end = loop {
             if let Some(reason) = self.interrupted_or_over(start, &mut memory_checked, obs) {
                 break reason;
@@ -198,18 +201,19 @@ impl<'a> Setup<'a> {
             let forced = self.busy_steered(&steered, obs);
             let k = iters;
             iters += 1;
-            let candidates: Vec<usize> = if self.opts.skip_idle {
-                let mut q = std::mem::take(&mut self.ready);
-                q.sort_unstable();
-                q
+            // The queue's buffer is handed back and forth between rounds: a round allocates
+            // nothing for it.
+            let mut candidates = std::mem::replace(&mut self.ready, std::mem::take(&mut spare));
+            if self.opts.skip_idle {
+                candidates.sort_unstable();
             } else {
-                self.ready.clear();
-                (0..self.slots.len()).collect()
-            };
+                candidates.clear();
+                candidates.extend(0..self.slots.len());
+            }
             let mut jobs: Vec<Job> = Vec::with_capacity(candidates.len());
             // Cycles that can do something (new input, or the agent is not waiting).
             let mut due = 0usize;
-            for i in candidates {
+            for &i in &candidates {
                 let s = &mut self.slots[i];
                 s.queued = false;
                 if s.stats.stopped {
@@ -237,6 +241,8 @@ impl<'a> Setup<'a> {
                     s.stats.idle_ticks += 1;
                 }
             }
+            candidates.clear();
+            spare = candidates;
             if due == 0 && self.env.is_none() && !self.comm.as_ref().is_some_and(|c| c.busy()) {
                 break if alive == 0 {
                     EndReason::AllStopped
@@ -263,7 +269,6 @@ impl<'a> Setup<'a> {
             let mut actions: Vec<(String, Term)> = Vec::new();
             let mut actors: Vec<usize> = Vec::new();
             let mut sites: Vec<RuntimeError> = Vec::new();
-            let mut sent: Vec<Message> = Vec::new();
             for (i, out) in outputs {
                 let s = &mut self.slots[i];
                 let was_stopped = s.stats.stopped;
@@ -337,7 +342,8 @@ impl<'a> Setup<'a> {
             messages += sent.len() as u64;
             if let Some(c) = self.comm.as_mut() {
                 let mut warn = |w: &str| obs.warning(w);
-                let (arrived, lost) = c.carry((round, tick), sent, trace.as_mut(), &mut warn);
+                let all = std::mem::take(&mut sent);
+                let (arrived, lost) = c.carry((round, tick), all, trace.as_mut(), &mut warn);
                 for m in &lost {
                     if let Some(t) = trace.as_mut() {
                         t.message(round, tick, m, false);
@@ -346,7 +352,7 @@ impl<'a> Setup<'a> {
                 }
                 sent = arrived;
             }
-            for m in sent {
+            for m in sent.drain(..) {
                 let receiver = self.router.index(m.receiver);
                 let full = receiver.is_some_and(|j| self.mailbox_full(j, round, tick, obs));
                 let delivered = receiver.is_some() && !full;

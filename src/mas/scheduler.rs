@@ -1,9 +1,11 @@
-//! The worker pool: a round hands every thread a contiguous share of the cycles to run and
-//! collects the outputs, returned in agent-index order so the result never depends on thread
-//! timing. The calling thread runs the first share itself, and rounds with very few cycles
-//! (a token ring moves one agent per round) run entirely on it: waking a thread costs more
-//! than such a cycle. Between rounds both sides wait by spinning briefly before they block:
-//! rounds are often shorter than putting a thread to sleep and waking it again.
+//! The worker pool: a round's cycles are claimed a few at a time by whichever thread is free
+//! (the calling thread included), and the outputs are returned in agent-index order, so the
+//! result never depends on thread timing. Claiming instead of handing out fixed shares keeps
+//! a round moving when the machine is busy: a worker thread that waits for a core only takes
+//! work once it runs, and until then the calling thread takes it. Rounds with very few cycles
+//! (a token ring moves one agent per round) run entirely on the calling thread: waking a
+//! thread costs more than such a cycle. Between rounds both sides wait by spinning briefly
+//! before they block: rounds are often shorter than putting a thread to sleep and waking it.
 //!
 //! Whether sharing a round pays depends on the machine: on a busy one a worker thread may wait
 //! milliseconds for a core while the round's cycles take a fraction of that. The pool measures
@@ -14,7 +16,8 @@ use crate::agent::{Agent, CycleOutput, Message};
 use crate::term::Term;
 use crossbeam_channel::{unbounded, Receiver, RecvError, Sender, TryRecvError};
 use std::cell::Cell;
-use std::sync::{Arc, Mutex};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Condvar, Mutex};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -46,6 +49,77 @@ type Done = Vec<(usize, CycleOutput)>;
 /// A share of a round: the simulated time the agents' clocks answer, and the cycles to run.
 type Share = (Option<f64>, Vec<Job>);
 
+/// Cycles a thread claims at a time from a shared round: few, so that the last claims end
+/// close together, but enough to keep the claiming itself cheap.
+const CHUNK: usize = 4;
+
+/// A round shared between threads: its jobs, the next one to claim, and what came out.
+struct Round {
+    clock: Option<f64>,
+    jobs: Vec<Mutex<Option<Job>>>,
+    next: AtomicUsize,
+    /// Jobs finished (mirrors `collected.finished`, read while spinning).
+    finished: AtomicUsize,
+    collected: Mutex<Collected>,
+    all_done: Condvar,
+}
+
+/// The outputs of a shared round so far.
+#[derive(Default)]
+struct Collected {
+    outputs: Done,
+    finished: usize,
+    error: Option<PoolError>,
+}
+
+impl Round {
+    /// Runs claimed chunks of the round's jobs until none is left.
+    fn work(&self, agents: &[Mutex<Agent>]) {
+        let n = self.jobs.len();
+        loop {
+            let from = self.next.fetch_add(CHUNK, Ordering::Relaxed);
+            if from >= n {
+                return;
+            }
+            let to = (from + CHUNK).min(n);
+            let jobs: Vec<Job> = self.jobs[from..to]
+                .iter()
+                .filter_map(|j| j.lock().ok().and_then(|mut j| j.take()))
+                .collect();
+            let mut done = Vec::with_capacity(jobs.len());
+            let result = step(agents, (self.clock, jobs), &mut done);
+            // A poisoned lock can only come from a panic while it was held, which nothing
+            // here does; the outputs are taken all the same.
+            let mut c = self.collected.lock().unwrap_or_else(|e| e.into_inner());
+            c.outputs.append(&mut done);
+            if let Err(e) = result {
+                c.error.get_or_insert(e);
+            }
+            c.finished += to - from;
+            self.finished.store(c.finished, Ordering::Release);
+            if c.finished == n {
+                self.all_done.notify_all();
+            }
+        }
+    }
+
+    /// Waits (spinning first) until every job of the round has finished; returns what came out.
+    fn wait(&self) -> Collected {
+        let n = self.jobs.len();
+        let start = Instant::now();
+        while self.finished.load(Ordering::Acquire) < n && start.elapsed() < SPIN {
+            for _ in 0..64 {
+                std::hint::spin_loop();
+            }
+        }
+        let mut c = self.collected.lock().unwrap_or_else(|e| e.into_inner());
+        while c.finished < n {
+            c = self.all_done.wait(c).unwrap_or_else(|e| e.into_inner());
+        }
+        std::mem::take(&mut *c)
+    }
+}
+
 /// Rounds with fewer cycles than this run on the calling thread only.
 const INLINE_BELOW: usize = 4;
 
@@ -54,8 +128,7 @@ const INLINE_BELOW: usize = 4;
 type Agents = Arc<Vec<Mutex<Agent>>>;
 
 struct Worker {
-    tx: Sender<Share>,
-    rx: Receiver<Done>,
+    tx: Sender<Arc<Round>>,
     join: Option<JoinHandle<()>>,
 }
 
@@ -141,16 +214,14 @@ impl Pool {
         let agents: Agents = Arc::new(agents.into_iter().map(Mutex::new).collect());
         let mut ws = Vec::with_capacity(n - 1);
         for w in 1..n {
-            let (job_tx, job_rx) = unbounded::<Share>();
-            let (done_tx, done_rx) = unbounded::<Done>();
+            let (job_tx, job_rx) = unbounded::<Arc<Round>>();
             let shared = agents.clone();
             let join = std::thread::Builder::new()
                 .name(format!("agents-{w}"))
-                .spawn(move || work(shared, job_rx, done_tx))
+                .spawn(move || work(shared, job_rx))
                 .map_err(|e| PoolError(format!("cannot start a worker thread: {e}")))?;
             ws.push(Worker {
                 tx: job_tx,
-                rx: done_rx,
                 join: Some(join),
             });
         }
@@ -181,7 +252,7 @@ impl Pool {
     /// by agent index; `clock` is the simulated time `get_time/1` answers (`None`: wall clock).
     pub fn round(
         &self,
-        mut jobs: Vec<Job>,
+        jobs: Vec<Job>,
         clock: Option<f64>,
     ) -> Result<Vec<(usize, CycleOutput)>, PoolError> {
         let mut out = Vec::with_capacity(jobs.len());
@@ -196,32 +267,33 @@ impl Pool {
             out.sort_by_key(|(i, _)| *i);
             return Ok(out);
         }
-        let shares = self.workers.len() + 1;
-        let size = jobs.len().div_ceil(shares);
-        let mut busy = Vec::new();
-        // Hand out the tail shares first; the calling thread keeps the first.
-        for w in (0..self.workers.len()).rev() {
-            let from = size * (w + 1);
-            if from >= jobs.len() {
-                continue;
-            }
-            let share = jobs.split_off(from);
-            self.workers[w]
-                .tx
-                .send((clock, share))
-                .map_err(|_| PoolError("a worker thread stopped".into()))?;
-            busy.push(w);
-        }
-        let mine = step(&self.agents, (clock, jobs), &mut out);
-        for w in busy {
-            let done = wait(&self.workers[w].rx)
-                .map_err(|_| PoolError("a worker thread stopped (panic in an agent?)".into()))?;
-            out.extend(done);
-        }
-        mine?;
+        out = self.shared(jobs, clock)?;
         self.costs.record(true, start.elapsed(), cycles);
         out.sort_by_key(|(i, _)| *i);
         Ok(out)
+    }
+
+    /// Runs a round on every thread: each takes cycles until none is left. The outputs come
+    /// back in no particular order.
+    fn shared(&self, jobs: Vec<Job>, clock: Option<f64>) -> Result<Done, PoolError> {
+        let shared = Arc::new(Round {
+            clock,
+            jobs: jobs.into_iter().map(|j| Mutex::new(Some(j))).collect(),
+            next: AtomicUsize::new(0),
+            finished: AtomicUsize::new(0),
+            collected: Mutex::new(Collected::default()),
+            all_done: Condvar::new(),
+        });
+        // A worker that stopped only leaves more of the round to the calling thread.
+        for w in &self.workers {
+            let _ = w.tx.send(shared.clone());
+        }
+        shared.work(&self.agents);
+        let c = shared.wait();
+        match c.error {
+            Some(e) => Err(e),
+            None => Ok(c.outputs),
+        }
     }
 }
 
@@ -240,20 +312,65 @@ impl Drop for Pool {
     }
 }
 
-fn work(agents: Agents, rx: Receiver<Share>, tx: Sender<Done>) {
-    while let Ok(jobs) = wait(&rx) {
-        let mut done = Vec::with_capacity(jobs.1.len());
-        // An error (unknown index, poisoned lock) ends this thread; the caller then reports
-        // that a worker stopped.
-        if step(&agents, jobs, &mut done).is_err() || tx.send(done).is_err() {
-            break;
-        }
+fn work(agents: Agents, rx: Receiver<Arc<Round>>) {
+    while let Ok(round) = wait(&rx) {
+        round.work(&agents);
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::agent::{AgentConfig, Directory, Program, TraceLevel};
+
+    /// `n` agents that print their name and a random number each cycle.
+    fn agents(n: usize) -> Vec<Agent> {
+        let text = "main module {\n program {\n \
+                    if bel(me(Me), X is random(1000)) then print(Me-X).\n }\n}\n";
+        let prog = Program::from_source("t.goal", text).expect("compiles");
+        let names: Vec<String> = (0..n).map(|i| format!("a{i:02}")).collect();
+        let directory = Directory::new(&names);
+        names
+            .iter()
+            .enumerate()
+            .map(|(i, name)| {
+                let config = AgentConfig {
+                    seed: i as u64,
+                    directory: Some(directory.clone()),
+                    trace: TraceLevel::Off,
+                    ..AgentConfig::default()
+                };
+                Agent::new(prog.clone(), name, config)
+            })
+            .collect()
+    }
+
+    fn printed(out: Done) -> Vec<(usize, Vec<String>)> {
+        out.into_iter().map(|(i, o)| (i, o.printed)).collect()
+    }
+
+    #[test]
+    fn a_round_shared_between_threads_gives_what_one_thread_gives() {
+        let n = 23;
+        let alone = Pool::new(agents(n), 1).expect("pool");
+        let shared = Pool::new(agents(n), 3).expect("pool");
+        assert_eq!(shared.workers(), 3);
+        for round in 0..5 {
+            let jobs = || {
+                (0..n)
+                    .map(|i| (i, Vec::new(), Vec::new()))
+                    .collect::<Vec<Job>>()
+            };
+            let mut a = Vec::new();
+            step(&alone.agents, (None, jobs()), &mut a).expect("round");
+            let mut b = shared.shared(jobs(), None).expect("round");
+            b.sort_by_key(|(i, _)| *i);
+            let (a, b) = (printed(a), printed(b));
+            assert_eq!(a, b, "round {round}");
+            assert_eq!(b.len(), n);
+            assert!(b.iter().all(|(_, p)| p.len() == 1), "{b:?}");
+        }
+    }
 
     #[test]
     fn rounds_are_shared_only_while_sharing_is_faster() {
