@@ -646,8 +646,8 @@ impl<'a, 'm> Solver<'a, 'm> {
         let pred = self.pred(r);
         // The second-argument key is read from the goal on every entry: backtracking restores
         // the bindings of the call, so the candidate list is the same each time.
-        let key2 = match (key, goal) {
-            (None, Cell::Ptr(p)) if pred.arity >= 2 && pred.has_second_index() => {
+        let key2 = match goal {
+            Cell::Ptr(p) if key.is_none() && pred.arity >= 2 && pred.has_second_index() => {
                 Key::of_cell(&self.m.st, self.a(p, 1))
             }
             _ => None,
