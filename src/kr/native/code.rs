@@ -180,72 +180,61 @@ impl Code {
                 store.new_str(self.strs[i as usize].clone());
                 Cell::Big(store.strs.len() as u32 - 1)
             }
-            Cell::Ptr(off) => Cell::Ptr(self.build_tree(store, off, slots)),
+            Cell::Ptr(off) => {
+                let mut work = std::mem::take(&mut store.build_work);
+                let p = self.build_struct(store, off, slots, &mut work);
+                while let Some((dst, o)) = work.pop() {
+                    let q = self.build_struct(store, o, slots, &mut work);
+                    store.heap[dst as usize] = Cell::Ptr(q);
+                }
+                store.build_work = work;
+                Cell::Ptr(p)
+            }
             other => other,
         }
     }
 
-    /// Copies the structure at `off` and everything nested in it to the heap (iteratively,
-    /// through the store's work stack); returns the heap address of its header.
-    fn build_tree(&self, store: &mut Store, off: u32, slots: &mut [Cell]) -> u32 {
-        let base = store.build_work.len();
-        let p = self.build_struct(store, off, slots);
-        while store.build_work.len() > base {
-            let Some((dst, o)) = store.build_work.pop() else {
-                break;
-            };
-            let q = self.build_struct(store, o, slots);
-            store.heap[dst as usize] = Cell::Ptr(q);
-        }
-        p
-    }
-
-    /// Copies the header and arguments of the structure at `off` to the heap; nested
-    /// structures are left on the store's work stack (their cells are filled later).
+    /// Copies the structure at `off` to the heap; nested structures are left to `work`.
     #[inline]
-    fn build_struct(&self, store: &mut Store, off: u32, slots: &mut [Cell]) -> u32 {
-        let off = off as usize;
-        let f = self.cells[off];
-        let n = f.fun().map_or(0, |f| f.1) as usize;
+    fn build_struct(
+        &self,
+        store: &mut Store,
+        off: u32,
+        slots: &mut [Cell],
+        work: &mut Vec<(u32, u32)>,
+    ) -> u32 {
+        let f = self.cells[off as usize];
+        let n = f.fun().map_or(0, |f| f.1);
         let p = store.heap.len() as u32;
-        store.heap.reserve(n + 1);
         store.heap.push(f);
-        for (i, &c) in self.cells[off + 1..off + 1 + n].iter().enumerate() {
-            let a = p + 1 + i as u32;
-            let v = match c {
-                Cell::Ref(k) => match slots.get_mut(k as usize) {
-                    Some(s) => {
-                        if let Cell::Ref(u32::MAX) = *s {
-                            *s = Cell::Ref(a);
-                        }
-                        *s
+        for i in 0..n {
+            let a = p + 1 + i;
+            let c = match self.cells[(off + 1 + i) as usize] {
+                Cell::Ref(k) if (k as usize) < slots.len() => {
+                    let s = &mut slots[k as usize];
+                    if let Cell::Ref(u32::MAX) = *s {
+                        *s = Cell::Ref(a);
                     }
-                    None => Cell::Ref(a),
-                },
-                Cell::Str(_) | Cell::Big(_) | Cell::Ptr(_) => self.build_special(store, c, a),
+                    *s
+                }
+                Cell::Ref(_) => Cell::Ref(a),
+                Cell::Str(j) => {
+                    store.strs.push(self.strs[j as usize].clone());
+                    Cell::Str(store.strs.len() as u32 - 1)
+                }
+                Cell::Big(j) => {
+                    store.strs.push(self.strs[j as usize].clone());
+                    Cell::Big(store.strs.len() as u32 - 1)
+                }
+                Cell::Ptr(o) => {
+                    work.push((a, o));
+                    UNSET
+                }
                 other => other,
             };
-            store.heap.push(v);
+            store.heap.push(c);
         }
         p
-    }
-
-    /// The heap cell for a string, a big integer or a nested structure of this code placed
-    /// at heap address `a` (a nested structure is filled in later by [`Code::build_tree`]).
-    #[cold]
-    fn build_special(&self, store: &mut Store, c: Cell, a: u32) -> Cell {
-        match c {
-            Cell::Str(j) => store.new_str(self.strs[j as usize].clone()),
-            Cell::Big(j) => {
-                store.new_str(self.strs[j as usize].clone());
-                Cell::Big(store.strs.len() as u32 - 1)
-            }
-            Cell::Ptr(o) => {
-                store.build_work.push((a, o));
-                UNSET
-            }
-            other => other,
-        }
     }
 
     /// Like [`Code::unify`], with the common cases (a new variable, a constant) inline.
