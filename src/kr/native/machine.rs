@@ -638,8 +638,8 @@ impl<'a, 'm> Solver<'a, 'm> {
         let pred = self.pred(r);
         // The second-argument key is read from the goal on every entry: backtracking restores
         // the bindings of the call, so the candidate list is the same each time.
-        let key2 = match (key, goal) {
-            (None, Cell::Ptr(p)) if pred.arity >= 2 && pred.has_second_index() => {
+        let key2 = match goal {
+            Cell::Ptr(p) if key.is_none() && pred.arity >= 2 && pred.has_second_index() => {
                 Key::of_cell(&self.m.st, self.a(p, 1))
             }
             _ => None,
@@ -702,9 +702,9 @@ impl<'a, 'm> Solver<'a, 'm> {
         m.slots.clear();
         m.slots.resize(cl.nslots as usize, UNSET);
         if let (Cell::Ptr(off), Cell::Ptr(gp)) = (cl.head, goal) {
-            for i in 0..pred.arity {
-                let c = cl.code.cells[(off + 1 + i) as usize];
-                let h = m.st.heap[(gp + 1 + i) as usize];
+            let (off, gp, n) = (off as usize + 1, gp as usize + 1, pred.arity as usize);
+            for (i, &c) in cl.code.cells[off..off + n].iter().enumerate() {
+                let h = m.st.heap[gp + i];
                 if !cl.code.unify_arg(&mut m.st, c, h, &mut m.slots) {
                     return false;
                 }
@@ -712,14 +712,16 @@ impl<'a, 'm> Solver<'a, 'm> {
         }
         let mut nx = next;
         // Depth is the continuation length: the last body goal is one deeper than `next`.
-        let base = if next == NONE {
+        let mut d = if next == NONE {
             0
         } else {
             m.frames[next as usize].depth
         };
         let _ = depth;
-        for (d, (g, pred)) in (base + 1..).zip(cl.body.iter().zip(&cl.preds).rev()) {
+        m.frames.reserve(cl.body.len());
+        for (g, pred) in cl.body.iter().zip(&cl.preds).rev() {
             let c = cl.code.build(&mut m.st, *g, &mut m.slots);
+            d += 1;
             m.frames.push(Frame {
                 goal: Goal::Call(c),
                 next: nx,
