@@ -301,6 +301,8 @@ mod engine {
                     });
                     (answers, result.err().map(|e| e.to_term()))
                 }
+                // Only reachable when the scryer engine is compiled in.
+                #[allow(unreachable_patterns)]
                 other => match other.query(&view, query) {
                     Ok(answers) => (answers, None),
                     Err(e) => (Vec::new(), Some(e.to_term())),

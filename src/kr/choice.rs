@@ -123,6 +123,8 @@ impl AgentEngine {
 
     /// Sets the simulated time `get_time/1` answers (native engine; scryer reads the wall clock).
     pub fn set_clock(&mut self, now: Option<f64>) {
+        // Irrefutable when the scryer engine is not compiled in.
+        #[allow(irrefutable_let_patterns)]
         if let AgentEngine::Native(e) = self {
             e.clock.now = now;
         }
