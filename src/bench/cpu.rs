@@ -20,6 +20,11 @@ pub fn process_time() -> Option<Duration> {
     ))
 }
 
+/// CPU time used since `before` (a [`process_time`] reading); `None` where it cannot be read.
+pub fn since(before: Option<Duration>) -> Option<Duration> {
+    Some(process_time()?.saturating_sub(before?))
+}
+
 #[cfg(test)]
 mod tests {
     #[test]

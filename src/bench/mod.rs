@@ -85,14 +85,14 @@ pub fn set_fact(text: &str, old: &str, new: &str) -> Result<String, String> {
 }
 
 /// Runs benchmark `name` with `params` on `workers` worker threads; the report carries the
-/// CPU time the process spent on it.
+/// CPU time the process spent on it (unless the benchmark measured its own, as one that also
+/// runs a comparison does).
 pub fn run(name: &str, params: &Params, workers: usize) -> Result<Report, String> {
     let before = cpu::process_time();
     let mut report = run_named(name, params, workers)?;
-    report.cpu = match (before, cpu::process_time()) {
-        (Some(b), Some(a)) => Some(a.saturating_sub(b)),
-        _ => None,
-    };
+    if report.cpu.is_none() {
+        report.cpu = cpu::since(before);
+    }
     Ok(report)
 }
 

@@ -185,11 +185,16 @@ pub fn run(name: &str, params: &Params, workers: usize, tokens: u64) -> Result<R
 /// is left out.
 pub fn ring50(params: &Params, workers: usize) -> Result<Report, String> {
     let compare = params.get("compare", 1)? != 0 && workers > 1;
+    // Each run's own CPU time: the process total would count the comparison run too.
+    let before = super::cpu::process_time();
     let mut report = run("ring50", params, workers, 50)?;
+    report.cpu = super::cpu::since(before);
     if !compare || !report.ok() {
         return Ok(report);
     }
+    let before = super::cpu::process_time();
     let one = run("ring50", params, 1, 50)?;
+    let one_cpu = super::cpu::since(before);
     if let Some(f) = one.failure {
         report.failure = Some(format!("on 1 worker: {f}"));
         return Ok(report);
@@ -197,7 +202,15 @@ pub fn ring50(params: &Params, workers: usize) -> Result<Report, String> {
     let speedup = report.rate() / one.rate().max(1e-9);
     report.extra.push((
         "1 worker".into(),
-        format!("{}/s, run {:.3} s", si(one.rate()), one.run.as_secs_f64()),
+        match one_cpu {
+            Some(cpu) => format!(
+                "{}/s, run {:.3} s, cpu {:.3} s",
+                si(one.rate()),
+                one.run.as_secs_f64(),
+                cpu.as_secs_f64()
+            ),
+            None => format!("{}/s, run {:.3} s", si(one.rate()), one.run.as_secs_f64()),
+        },
     ));
     report.targets.push(Target {
         what: "speed-up over 1 worker",
