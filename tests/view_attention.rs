@@ -96,13 +96,8 @@ fn the_panel_shows_the_attention_stack_in_a_replay() {
     let Some(chromium) = browser() else { return };
     let dir = scratch("attention-replay");
     let trace = dir.join("attention.jsonl");
-    let st = goal()
-        .args(["run", MAS, "--max-cycles", "30", "--trace"])
-        .arg(&trace)
-        .stderr(std::process::Stdio::null())
-        .status()
-        .unwrap();
-    assert_eq!(st.code(), Some(3), "the run stops at its cycle limit");
+    let code = record(&[MAS, "--max-cycles", "30"], &trace);
+    assert_eq!(code, Some(3), "the run stops at its cycle limit");
     let mut cmd = goal();
     cmd.arg("view").arg(&trace);
     let served = Served::start(cmd);

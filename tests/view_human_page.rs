@@ -153,34 +153,14 @@ fn handle_a_block(tab: &mut Tab, room: &str) -> bool {
     false
 }
 
-fn records(trace: &std::path::Path) -> Vec<Value> {
-    std::fs::read_to_string(trace)
-        .unwrap()
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect()
-}
-
 #[test]
 fn a_person_plays_a_humanbot_while_two_agents_play_and_the_team_completes_the_game() {
     let Some(chromium) = browser() else { return };
     let dir = scratch("play-page");
     let trace = dir.join("game.jsonl");
     let stats = dir.join("stats.json");
-    let mut cmd = goal();
-    cmd.args([
-        "run",
-        "--robots",
-        "2",
-        "--humans",
-        "1",
-        "--max-ticks",
-        "40000",
-    ])
-    .arg("--trace")
-    .arg(&trace)
-    .arg("--stats")
-    .arg(&stats);
+    let mut cmd = team_with_humans(2, 1, 40000);
+    cmd.arg("--trace").arg(&trace).arg("--stats").arg(&stats);
     let mut served = Served::start(cmd);
     let url = served.url.clone();
 

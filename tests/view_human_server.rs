@@ -24,15 +24,6 @@ fn error_of(answer: &(u16, Value)) -> String {
     answer.1["error"].as_str().unwrap_or_default().to_string()
 }
 
-/// The records of the trace `path`.
-fn records(path: &std::path::Path) -> Vec<Value> {
-    std::fs::read_to_string(path)
-        .unwrap()
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect()
-}
-
 /// The live run's tick as its page sees it.
 fn tick(url: &str) -> u64 {
     json(url, "/api/info")["control"]["tick"]
@@ -55,16 +46,7 @@ fn announced(url: &str) -> Value {
 
 #[test]
 fn bad_player_requests_get_clear_errors_and_the_run_goes_on() {
-    let mut cmd = goal();
-    cmd.args([
-        "run",
-        "--robots",
-        "2",
-        "--humans",
-        "1",
-        "--max-ticks",
-        "200000",
-    ]);
+    let cmd = team_with_humans(2, 1, 200000);
     let served = Served::start(cmd);
     let url = served.url.clone();
     let state = announced(&url);
@@ -163,13 +145,7 @@ fn bad_player_requests_get_clear_errors_and_the_run_goes_on() {
 fn nobody_plays_a_replay() {
     let dir = scratch("play-replay");
     let trace = dir.join("t.jsonl");
-    let st = goal()
-        .args(["run", "--max-ticks", "20", "--trace"])
-        .arg(&trace)
-        .stderr(std::process::Stdio::null())
-        .status()
-        .unwrap();
-    assert_eq!(st.code(), Some(3));
+    assert_eq!(record(&["--max-ticks", "20"], &trace), Some(3));
     let mut cmd = goal();
     cmd.arg("view").arg(&trace);
     let served = Served::start(cmd);
@@ -190,18 +166,8 @@ fn nobody_plays_a_replay() {
 fn a_humanbot_nobody_plays_stands_still_and_the_run_waits_for_nobody() {
     let dir = scratch("play-nobody");
     let trace = dir.join("t.jsonl");
-    let mut cmd = goal();
-    cmd.args([
-        "run",
-        "--robots",
-        "2",
-        "--humans",
-        "1",
-        "--max-ticks",
-        "300",
-    ])
-    .arg("--trace")
-    .arg(&trace);
+    let mut cmd = team_with_humans(2, 1, 300);
+    cmd.arg("--trace").arg(&trace);
     let mut served = Served::start(cmd);
     // Nobody opens the page: the run plays to its tick limit all the same.
     served.wait_line(|l| l.contains("the run is over"), Duration::from_secs(300));
@@ -252,18 +218,8 @@ fn answered(url: &str, token: &str, id: &Value) -> Value {
 fn two_people_play_a_robot_each() {
     let dir = scratch("play-two");
     let trace = dir.join("t.jsonl");
-    let mut cmd = goal();
-    cmd.args([
-        "run",
-        "--robots",
-        "1",
-        "--humans",
-        "2",
-        "--max-ticks",
-        "200000",
-    ])
-    .arg("--trace")
-    .arg(&trace);
+    let mut cmd = team_with_humans(1, 2, 200000);
+    cmd.arg("--trace").arg(&trace);
     let served = Served::start(cmd);
     let url = served.url.clone();
     announced(&url);

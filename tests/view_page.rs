@@ -13,13 +13,8 @@ use view_support::*;
 /// A trace of the default team's first `ticks` ticks.
 fn default_trace(dir: &std::path::Path, ticks: u64) -> std::path::PathBuf {
     let trace = dir.join("team.jsonl");
-    let st = goal()
-        .args(["run", "--max-ticks", &ticks.to_string(), "--trace"])
-        .arg(&trace)
-        .stderr(std::process::Stdio::null())
-        .status()
-        .unwrap();
-    assert_eq!(st.code(), Some(3), "the run stops at its tick limit");
+    let code = record(&["--max-ticks", &ticks.to_string()], &trace);
+    assert_eq!(code, Some(3), "the run stops at its tick limit");
     trace
 }
 
@@ -170,13 +165,7 @@ fn a_run_without_environment_shows_minds_only() {
     let dir = scratch("minds");
     let trace = dir.join("ring.jsonl");
     let agent = concat!(env!("CARGO_MANIFEST_DIR"), "/agents/counter/counter.goal");
-    let st = goal()
-        .args(["run", agent, "--trace"])
-        .arg(&trace)
-        .stderr(std::process::Stdio::null())
-        .status()
-        .unwrap();
-    assert_eq!(st.code(), Some(0));
+    assert_eq!(record(&[agent], &trace), Some(0));
     let mut cmd = goal();
     cmd.arg("view").arg(&trace);
     let served = Served::start(cmd);
@@ -207,14 +196,10 @@ fn a_bw4t_xml_map_is_drawn() {
     }
     let dir = scratch("xml");
     let trace = dir.join("xml.jsonl");
-    let _ = goal()
-        .args(["run", "--max-ticks", "50", "--map"])
-        .arg(&map)
-        .arg("--trace")
-        .arg(&trace)
-        .stderr(std::process::Stdio::null())
-        .status()
-        .unwrap();
+    let _ = record(
+        &["--max-ticks", "50", "--map", map.to_str().unwrap()],
+        &trace,
+    );
     let mut cmd = goal();
     cmd.arg("view").arg(&trace);
     let served = Served::start(cmd);
@@ -310,13 +295,10 @@ fn the_page_measures_its_load_and_timeline_moves() {
         env!("CARGO_MANIFEST_DIR"),
         "/tests/fixtures/view/endless.toml"
     );
-    let st = goal()
-        .args(["run", "--max-ticks", "300", "--map", map, "--trace"])
-        .arg(&trace)
-        .stderr(std::process::Stdio::null())
-        .status()
-        .unwrap();
-    assert_eq!(st.code(), Some(3));
+    assert_eq!(
+        record(&["--max-ticks", "300", "--map", map], &trace),
+        Some(3)
+    );
     let mut cmd = goal();
     cmd.arg("view").arg(&trace);
     let served = Served::start(cmd);

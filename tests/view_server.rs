@@ -83,13 +83,7 @@ fn a_live_run_survives_closed_tabs_and_many_clients_and_writes_the_same_trace() 
     let dir = scratch("live");
     let plain = dir.join("plain.jsonl");
     let watched = dir.join("watched.jsonl");
-    let st = goal()
-        .args(["run", "--max-ticks", "250", "--trace"])
-        .arg(&plain)
-        .stderr(std::process::Stdio::null())
-        .status()
-        .unwrap();
-    assert_eq!(st.code(), Some(3));
+    assert_eq!(record(&["--max-ticks", "250"], &plain), Some(3));
     let mut cmd = goal();
     cmd.args([
         "run",

@@ -13,6 +13,43 @@ pub fn goal() -> Command {
     Command::new(env!("CARGO_BIN_EXE_goal"))
 }
 
+/// Runs `goal run ARGS --trace TRACE` to its end (stderr dropped); its exit code.
+pub fn record(args: &[&str], trace: &Path) -> Option<i32> {
+    goal()
+        .arg("run")
+        .args(args)
+        .arg("--trace")
+        .arg(trace)
+        .stderr(Stdio::null())
+        .status()
+        .unwrap()
+        .code()
+}
+
+/// `goal run` of the default team with `robots` agent robots and `humans` HumanBots, for at
+/// most `max_ticks` ticks (it opens the view: start it with [`Served::start`]).
+pub fn team_with_humans(robots: u32, humans: u32, max_ticks: u64) -> Command {
+    let mut cmd = goal();
+    cmd.args([
+        "run",
+        "--robots",
+        &robots.to_string(),
+        "--humans",
+        &humans.to_string(),
+    ])
+    .args(["--max-ticks", &max_ticks.to_string()]);
+    cmd
+}
+
+/// The records of the trace `path`.
+pub fn records(path: &Path) -> Vec<serde_json::Value> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
 /// A scratch directory for one test.
 pub fn scratch(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("goal-view-{}-{name}", std::process::id()));
