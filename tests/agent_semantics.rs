@@ -130,6 +130,21 @@ fn forall_computes_answers_once() {
 }
 
 #[test]
+fn a_condition_gives_each_answer_once_when_literals_bind_different_variables() {
+    // The first literal answers once with X bound and once without; the second binds X in
+    // the latter to the value the former had: the same answer, which `forall` acts on once.
+    let mut a = agent(
+        "init module { beliefs { p(1). q(1). r(a). } }
+         main module { program [order=linearall] {
+            forall bel(p(X) ; true), bel(q(X)) do print(X).
+            forall bel(p(X) ; r(Y)), bel(q(X), r(Y)) do print(X-Y).
+            if true then exit-module. } }",
+    );
+    let printed: Vec<String> = run(&mut a, 3).into_iter().flat_map(|o| o.printed).collect();
+    assert_eq!(printed, ["1", "1-a"]);
+}
+
+#[test]
 fn listall_binds_all_answers_and_does_not_fire_on_none() {
     let mut a = agent(
         "init module { beliefs { p(1). p(2). p(3). } }

@@ -8,7 +8,8 @@ use super::program::Lit;
 use crate::kr::fxhash::FxHasher;
 use crate::kr::native::code::Key;
 use crate::syntax::ast::MentalOp;
-use crate::term::{Subst, Term};
+use crate::term::{Subst, Sym, Term};
+use smallvec::SmallVec;
 use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
 
@@ -29,17 +30,26 @@ struct AnswerSet {
 
 const HASH_FROM: usize = 16;
 
+/// A hash of the bindings of `s` that does not depend on their order.
 fn hash_of(s: &Subst) -> u64 {
-    let mut h = FxHasher::default();
-    s.hash(&mut h);
-    h.finish()
+    s.iter().fold(0u64, |acc, binding| {
+        let mut h = FxHasher::default();
+        binding.hash(&mut h);
+        acc.wrapping_add(h.finish())
+    })
+}
+
+/// True when `a` and `b` bind the same variables to the same terms, in whatever order: the
+/// same answer reached through literals that bound its variables in another order.
+fn same_answer(a: &Subst, b: &Subst) -> bool {
+    a.len() == b.len() && a.iter().all(|(v, t)| b.get(v) == Some(t))
 }
 
 impl AnswerSet {
     /// Adds `s` unless present.
     fn push(&mut self, s: Subst) {
         if self.items.len() < HASH_FROM {
-            if !self.items.contains(&s) {
+            if !self.items.iter().any(|i| same_answer(i, &s)) {
                 self.items.push(s);
             }
             return;
@@ -50,7 +60,7 @@ impl AnswerSet {
             self.indexed += 1;
         }
         let slot = self.index.entry(hash_of(&s)).or_default();
-        if slot.iter().any(|&i| self.items[i] == s) {
+        if slot.iter().any(|&i| same_answer(&self.items[i], &s)) {
             return;
         }
         slot.push(self.items.len());
@@ -110,6 +120,7 @@ pub fn evaluate(
     let mut answers = vec![base.clone()];
     for (i, lit) in lits.iter().enumerate() {
         let mut next = AnswerSet::default();
+        let bound = bound_by_any(&answers);
         'each: for theta in &answers {
             for a in literal(cx, lit, theta, cap, &mut cut)? {
                 if next.items.len() >= cap {
@@ -117,8 +128,8 @@ pub fn evaluate(
                     break 'each;
                 }
                 // Answers of one theta are distinct, and answers that only bind variables
-                // theta leaves free differ from those of every other theta: no search needed.
-                let fresh = a.iter().all(|(v, _)| theta.get(v).is_none());
+                // no theta binds differ from those of every other theta: no search needed.
+                let fresh = a.iter().all(|(v, _)| !bound.contains(&v));
                 let full = compose(theta, &a);
                 if fresh {
                     next.push_new(full);
@@ -141,6 +152,17 @@ pub fn evaluate(
         cut,
         failed: None,
     })
+}
+
+/// The variables some answer of `answers` binds (usually all bind the same ones).
+fn bound_by_any(answers: &[Subst]) -> SmallVec<[Sym; 8]> {
+    let mut vars = SmallVec::new();
+    for (v, _) in answers.iter().flat_map(|a| a.iter()) {
+        if !vars.contains(&v) {
+            vars.push(v);
+        }
+    }
+    vars
 }
 
 /// The distinct answers of one literal under `theta` (the bindings each adds to `theta`), at
