@@ -134,6 +134,25 @@ fn goal_prolog_answers_on_scryer() {
 }
 
 #[test]
+fn long_answers_with_variables_are_named_without_crashing() {
+    // 100,000 fresh variables in a list: renaming them used to recurse down the list and
+    // overflow the stack.
+    let (code, out, err) = goal(&[
+        "prolog",
+        "--kr",
+        "scryer",
+        "-q",
+        "findall(X, between(1, 100000, _), L), length(L, N)",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(
+        out.ends_with("N = 100000\n"),
+        "{}",
+        &out[out.len().saturating_sub(300)..]
+    );
+}
+
+#[test]
 fn the_default_bw4t_game_starts_the_same_on_scryer() {
     // The first 150 ticks (the whole game takes minutes in a debug build; README has it).
     std::env::set_current_dir(root()).expect("manifest dir");

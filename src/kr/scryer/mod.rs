@@ -270,36 +270,67 @@ fn answer(vars: &[Sym], instance: &Term) -> Subst {
         }
     }
     let mut s = Subst::new();
+    let mut fresh = Fresh {
+        taken: vars,
+        count: 0,
+    };
     for (v, t) in vars.iter().zip(values) {
         if let Term::Var(x) = t {
             if names.get(x) == Some(&Term::Var(*v)) {
                 continue;
             }
         }
-        s.bind(*v, rename(t, &mut names));
+        s.bind(*v, rename(t, &mut names, &mut fresh));
     }
     s
 }
 
-fn rename(t: &Term, names: &mut FxHashMap<Sym, Term>) -> Term {
+/// `t` with its variables named as `names` says, new ones `_R0`, `_R1`, ... (skipping the
+/// query's own names). Iterative: an answer may be a list of a hundred thousand variables.
+fn rename(t: &Term, names: &mut FxHashMap<Sym, Term>, fresh: &mut Fresh) -> Term {
     if t.is_ground() {
         return t.clone();
     }
-    match t {
-        Term::Var(x) => {
-            let n = names
-                .values()
-                .filter(|t| t.to_string().starts_with("_R"))
-                .count();
-            names
-                .entry(*x)
-                .or_insert_with(|| Term::var(&format!("_R{n}")))
-                .clone()
+    enum Step<'a> {
+        Visit(&'a Term),
+        Build(Sym, usize),
+    }
+    let mut work = vec![Step::Visit(t)];
+    let mut done: Vec<Term> = Vec::new();
+    while let Some(step) = work.pop() {
+        match step {
+            Step::Visit(Term::Var(x)) => {
+                done.push(names.entry(*x).or_insert_with(|| fresh.next()).clone())
+            }
+            Step::Visit(Term::Compound(c)) => {
+                work.push(Step::Build(c.name, c.args.len()));
+                work.extend(c.args.iter().rev().map(Step::Visit));
+            }
+            Step::Visit(other) => done.push(other.clone()),
+            Step::Build(name, n) => {
+                let args = done.split_off(done.len() - n);
+                done.push(Term::compound(name, args));
+            }
         }
-        Term::Compound(c) => {
-            Term::compound(c.name, c.args.iter().map(|a| rename(a, names)).collect())
+    }
+    done.pop().unwrap_or_else(|| t.clone())
+}
+
+/// New variable names for an answer: `_R0`, `_R1`, ..., none of them a query variable's name.
+struct Fresh<'a> {
+    taken: &'a [Sym],
+    count: usize,
+}
+
+impl Fresh<'_> {
+    fn next(&mut self) -> Term {
+        loop {
+            let name = format!("_R{}", self.count);
+            self.count += 1;
+            if !self.taken.iter().any(|v| v.name() == name) {
+                return Term::var(&name);
+            }
         }
-        other => other.clone(),
     }
 }
 
