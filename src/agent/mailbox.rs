@@ -8,40 +8,10 @@ use crate::term::{well_known as wk, Subst, Sym, Term};
 /// delete to the fact base's hash lookup.
 const SCAN: usize = 8;
 
-/// Nesting walked by recursion in [`same_under`]; deeper terms take the explicit stack.
-const SHALLOW: usize = 8;
-
 /// True when `pattern` under `s` is the ground term `fact` (walked side by side, nothing built).
 fn same_under(s: &Subst, pattern: &Term, fact: &Term) -> bool {
-    same_shallow(s, pattern, fact, 0).unwrap_or_else(|| same_deep(s, pattern, fact))
-}
-
-/// [`same_under`] by recursion while the terms are shallow (messages are); `None` past
-/// [`SHALLOW`] levels.
-fn same_shallow(s: &Subst, pattern: &Term, fact: &Term, depth: usize) -> Option<bool> {
-    match (s.walk(pattern), fact) {
-        (Term::Var(_), _) => Some(false),
-        (Term::Compound(a), Term::Compound(b)) => {
-            if a.name != b.name || a.args.len() != b.args.len() {
-                return Some(false);
-            }
-            if depth >= SHALLOW {
-                return None;
-            }
-            for (p, f) in a.args.iter().zip(b.args.iter()) {
-                if !same_shallow(s, p, f, depth + 1)? {
-                    return Some(false);
-                }
-            }
-            Some(true)
-        }
-        (a, b) => Some(a == b),
-    }
-}
-
-/// [`same_under`] with an explicit stack, for terms of any depth.
-fn same_deep(s: &Subst, pattern: &Term, fact: &Term) -> bool {
-    let mut work: Vec<(&Term, &Term)> = vec![(pattern, fact)];
+    // Messages are small: the walk's stack stays inline.
+    let mut work: smallvec::SmallVec<[(&Term, &Term); 16]> = smallvec::smallvec![(pattern, fact)];
     while let Some((p, f)) = work.pop() {
         match (s.walk(p), f) {
             (Term::Var(_), _) => return false,
@@ -272,10 +242,10 @@ mod tests {
     }
 
     #[test]
-    fn deep_messages_are_compared_past_the_recursion_bound() {
+    fn deep_messages_are_compared_to_the_bottom() {
         let deep = |x: &str| {
             let mut t = x.to_string();
-            for _ in 0..(3 * SHALLOW) {
+            for _ in 0..24 {
                 t = format!("f({t}, g)");
             }
             term(&format!("received(a, {t})"))

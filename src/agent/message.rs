@@ -25,13 +25,16 @@ pub fn wrap_mood(mood: Mood, content: Term) -> Term {
 /// lists of them); an unbound variable is an error.
 pub fn agent_names(ts: &[Term], s: &Subst) -> Result<Vec<Sym>, Fault> {
     // The usual selector, one name (`(Next).send(...)`), without building a work list.
+    let mut work: Vec<Term> = Vec::with_capacity(ts.len());
     if let [t] = ts {
-        if let Term::Atom(a) = s.apply(t) {
-            return Ok(if a == wk::NIL { Vec::new() } else { vec![a] });
+        match s.apply(t) {
+            Term::Atom(a) => return Ok(if a == wk::NIL { Vec::new() } else { vec![a] }),
+            other => work.push(other),
         }
+    } else {
+        work.extend(ts.iter().rev().map(|t| s.apply(t)));
     }
     let mut names = Vec::new();
-    let mut work: Vec<Term> = ts.iter().rev().map(|t| s.apply(t)).collect();
     while let Some(t) = work.pop() {
         match &t {
             Term::Atom(a) if *a != wk::NIL => names.push(*a),
