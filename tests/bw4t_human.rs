@@ -580,6 +580,18 @@ fn toml_maps_list_epartners_and_human_spawn_points() {
             && d.contains("spawn point 3 (25, 5) and human spawn point 2 (26, 5) overlap")),
         "{e:?}"
     );
+    // A human spawn point outside the map is shown at the `human_spawns` line.
+    let outside = tiny.replace(
+        "spawns = [[5.0, 5.0]",
+        "human_spawns = [[500.0, 500.0]]\nspawns = [[5.0, 5.0]",
+    );
+    let Err(ds) = map::from_toml(&outside, "e.toml") else {
+        panic!("a spawn point outside the map is an error")
+    };
+    let d = ds.iter().find(|d| d.code == "M0015").expect("M0015");
+    let shown = d.render(&outside);
+    assert!(shown.contains("e.toml:12:1\n"), "{shown}");
+    assert!(shown.contains("human_spawns = [[500.0, 500.0]]"), "{shown}");
 }
 
 fn shared_banana_xml() -> Option<String> {

@@ -57,16 +57,16 @@ pub(crate) fn check(
         }
     }
     for (i, s) in map.spawns.iter().chain(&map.human_spawns).enumerate() {
-        let (label, n) = match i.checked_sub(map.spawns.len()) {
-            Some(h) => ("human spawn point", h),
-            None => ("spawn point", i),
+        let (label, key, n) = match i.checked_sub(map.spawns.len()) {
+            Some(h) => ("human spawn point", "@human_spawns", h),
+            None => ("spawn point", "@spawns", i),
         };
         let inside = s[0] >= 0.0 && s[1] >= 0.0 && s[0] <= map.width && s[1] <= map.height;
         if s.iter().all(|v| v.is_finite()) && !inside {
             out.push(
                 err(
                     "M0015",
-                    Some("@spawns"),
+                    Some(key),
                     format!(
                         "{label} {} ({}, {}) is outside the map ({} x {})",
                         n + 1,
