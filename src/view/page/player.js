@@ -174,8 +174,10 @@ function agentOfEntity(entity) {
 
 function drawRobots() {
   const ul = $('humans');
-  ul.textContent = '';
   const st = play.state;
+  const shown = st && [st.announced, st.robots.map((r) => [r.entity, r.mine, r.taken])];
+  if (unchanged(ul, JSON.stringify(shown))) return;
+  ul.textContent = '';
   if (!st || !st.robots.length) {
     ul.appendChild(pel('li', {}, st && st.announced ? 'This run has no HumanBots (goal run --humans 1 adds one).' : 'Waiting for the run…'));
     return;

@@ -316,7 +316,9 @@ function drawWorld(s) {
       rg.dataset.battery = r.battery;
     }
     el('text', { x: -1, y: -1.3 }, rg).textContent = name;
-    rg.addEventListener('click', () => select(agent));
+    // On press, not click: the robot is drawn anew each tick, so in a live run its release
+    // often lands on a new element and the click would be lost.
+    rg.addEventListener('pointerdown', () => select(agent));
   }
   const done = w.sequence_index || 0;
   const seq = $('sequence');
@@ -345,8 +347,19 @@ function fillList(id, items, countId) {
   if (countId) $(countId).textContent = '(' + all.length + ')';
 }
 
+// True when `e` already shows what `sig` describes; otherwise remembers `sig`. A list redrawn
+// although nothing changed would replace the element under the mouse, and a click whose press and
+// release land on different elements is lost (in a live run the page draws every tick).
+function unchanged(e, sig) {
+  if (e.dataset.sig === sig) return true;
+  e.dataset.sig = sig;
+  return false;
+}
+
 function drawAgents(s) {
   const ul = $('agents');
+  const shown = Array.from(s.minds, ([name, m]) => [name, name === view.selected, m.stopped || '']);
+  if (unchanged(ul, JSON.stringify(shown))) return;
   ul.textContent = '';
   for (const [name, m] of s.minds) {
     const li = document.createElement('li');
