@@ -129,6 +129,19 @@ fn the_panel_shows_the_attention_stack_in_a_live_run() {
     }
     let mut b = Browser::launch(&chromium, &dir.join("profile"));
     let mut tab = b.open(&served.url);
+    // The agent list stays put while the run goes on: an element replaced between a press
+    // and its release loses the click.
+    tab.wait_for("document.body.dataset.ready === '1'", "the page", MINUTE);
+    tab.eval("window.before = [document.body.dataset.tick, document.querySelector('#agents li')]");
+    tab.wait_for(
+        "document.body.dataset.tick !== window.before[0]",
+        "a new tick drawn",
+        MINUTE,
+    );
+    assert!(
+        tab.holds("document.querySelector('#agents li') === window.before[1]"),
+        "the agent list was drawn anew although it shows the same"
+    );
     check_panel(&mut tab);
     assert_eq!(
         tab.eval("view.info.mode"),
