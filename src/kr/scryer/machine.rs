@@ -92,6 +92,16 @@ impl Worker {
     pub fn stuck(&self) -> bool {
         self.stuck.get()
     }
+
+    /// Sends no more requests: the thread ends once its current one does.
+    pub fn close(&mut self) {
+        self.tx = None;
+    }
+
+    /// True when the thread has ended (a closed one ends when its query does).
+    pub fn finished(&self) -> bool {
+        self.join.as_ref().is_none_or(|j| j.is_finished())
+    }
 }
 
 impl Drop for Worker {
@@ -107,7 +117,7 @@ impl Drop for Worker {
     }
 }
 
-/// An error term `error(scryer(Message), _)`.
+/// An error term `error(system_error(Message), _)`.
 pub fn fault(message: &str) -> KrError {
     KrError::iso(
         Term::compound("system_error", vec![Term::string(message)]),

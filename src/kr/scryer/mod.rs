@@ -49,6 +49,9 @@ pub struct ScryerEngine {
     pub limits: Limits,
     program: String,
     worker: Option<Worker>,
+    /// The worker whose query outlived its time and still runs: scryer cannot stop it, so
+    /// no new thread starts while it runs (one per agent at most, never a pile of them).
+    stuck: Option<Worker>,
     mirrors: Vec<Mirror>,
     output: String,
     /// Number of machines rebuilt because of leaked memory (for reports and tests).
@@ -81,6 +84,7 @@ impl ScryerEngine {
             limits: Limits::default(),
             program,
             worker: None,
+            stuck: None,
             mirrors: (0..machine::WORLDS).map(|_| Mirror::default()).collect(),
             output: String::new(),
             rebuilds: 0,
@@ -132,6 +136,7 @@ impl ScryerEngine {
         let world = world_of(view);
         let (retract, assert, rebuild) = self.sync(world, view);
         if self.worker.is_none() {
+            self.wait_for_stuck()?;
             self.worker = Some(Worker::start(self.program.clone())?);
         }
         let Some(worker) = &self.worker else {
@@ -151,9 +156,12 @@ impl ScryerEngine {
             self.until(),
         );
         if worker.stuck() {
-            // Its thread still runs the query: the next query gets a new thread, and every
-            // machine of it is given the facts afresh.
-            self.worker = None;
+            // Its thread still runs the query: the next query gets a new thread once this one
+            // ends, and every machine of it is given the facts afresh.
+            if let Some(mut w) = self.worker.take() {
+                w.close();
+                self.stuck = Some(w);
+            }
             for m in &mut self.mirrors {
                 *m = Mirror::default();
             }
@@ -172,6 +180,21 @@ impl ScryerEngine {
         let (answers, output) = reply;
         self.output.push_str(&output);
         Ok(answers.iter().map(|a| answer(&vars, a)).collect())
+    }
+
+    /// Fails while an earlier query that outlived its time still runs on its thread.
+    fn wait_for_stuck(&mut self) -> KrResult<()> {
+        match &self.stuck {
+            Some(w) if !w.finished() => Err(machine::fault(
+                "an earlier query of this agent outlived its time and still runs (scryer cannot \
+                 stop a query); no other query starts until it ends: bound the work of that \
+                 query, or use the native engine, which stops every query at its limits",
+            )),
+            _ => {
+                self.stuck = None;
+                Ok(())
+            }
+        }
     }
 
     /// The facts to retract and to assert so that machine `world` holds the view's facts in
@@ -384,6 +407,7 @@ impl Clone for ScryerEngine {
             limits: self.limits,
             program: self.program.clone(),
             worker: None,
+            stuck: None,
             mirrors: (0..machine::WORLDS).map(|_| Mirror::default()).collect(),
             output: String::new(),
             rebuilds: 0,

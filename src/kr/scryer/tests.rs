@@ -3,6 +3,7 @@
 use super::*;
 use crate::kr::{FactBase, Knowledge, KrError};
 use crate::syntax::prolog::Reader;
+use std::time::Instant;
 
 fn terms(text: &str) -> Vec<Term> {
     let mut r = Reader::new("test");
@@ -150,22 +151,33 @@ fn belief_churn_rebuilds_the_machine() {
 }
 
 #[test]
-fn a_query_past_its_time_is_interrupted_and_the_next_one_answers() {
-    let clauses = terms("spin :- spin.");
+fn a_query_past_its_time_is_interrupted_and_no_other_starts_until_it_ends() {
+    // Seconds of work in scryer: far longer than the 50 ms allowed, and it does end.
+    let clauses = terms("count(0) :- !. count(N) :- M is N - 1, count(M).");
     let kn = Knowledge::load(&clauses).unwrap();
     let limits = Limits {
         max_inferences: 1 << 60,
         ..Limits::default()
     };
     let mut e = ScryerEngine::new(&clauses).unwrap().with_limits(limits);
-    e.backstop = Duration::from_millis(300);
+    e.backstop = Duration::from_millis(50);
     let view = View::beliefs(&kn, &[]);
-    match e.query(&view, &term("spin")) {
+    match e.query(&view, &term("count(100000)")) {
         Err(KrError::Interrupted { .. }) => {}
         other => panic!("expected an interrupted query, got {other:?}"),
     }
-    // The next query gets a new thread (starting it takes longer than 300 ms in debug builds).
+    // scryer cannot stop it: while it runs, no second thread starts beside it.
     e.backstop = BACKSTOP;
+    match e.query(&view, &term("X = 1")) {
+        Err(err) => assert!(err.to_string().contains("still runs"), "{err}"),
+        Ok(a) => panic!("a query started beside the stuck one: {a:?}"),
+    }
+    let end = Instant::now() + Duration::from_secs(300);
+    while !e.stuck.as_ref().is_none_or(|w| w.finished()) {
+        assert!(Instant::now() < end, "the stuck query never ended");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    // Once it ended, the next query gets a new thread and answers.
     assert!(e.holds(&view, &term("X = 1")).unwrap());
 }
 
