@@ -5,9 +5,10 @@
 //! `forall bel(percept(not(in(R)))) do delete(in(R))`).
 
 use super::kr_bridge::FactBase;
+use crate::kr::fxhash::FxHashMap;
 use crate::term::{well_known as wk, Sym, Term};
 use serde::Serialize;
-use std::collections::{BTreeMap, HashSet};
+use std::collections::HashSet;
 use std::sync::OnceLock;
 
 /// How the environment sends a percept (and so how long the agent keeps it).
@@ -26,25 +27,28 @@ pub enum PerceptType {
 /// Percept types by `(name, arity)`; unknown percepts are `Always`.
 #[derive(Clone, Debug, Default)]
 pub struct PerceptTypes {
-    map: BTreeMap<(String, usize), PerceptType>,
+    /// Keyed by symbol: every stored percept is looked up here every cycle. Only looked up,
+    /// never iterated, so the map's order cannot reach any output.
+    map: FxHashMap<(Sym, usize), PerceptType>,
 }
 
 impl PerceptTypes {
     /// Builds the map from declarations.
     pub fn new(decls: impl IntoIterator<Item = ((String, usize), PerceptType)>) -> PerceptTypes {
         PerceptTypes {
-            map: decls.into_iter().collect(),
+            map: decls
+                .into_iter()
+                .map(|((name, n), t)| ((Sym::intern(&name), n), t))
+                .collect(),
         }
     }
 
     /// The type of a percept term.
     pub fn of(&self, t: &Term) -> PerceptType {
         match t.functor() {
-            Some((s, n)) if !self.map.is_empty() => self
-                .map
-                .get(&(s.name().to_string(), n))
-                .copied()
-                .unwrap_or(PerceptType::Always),
+            Some(key) if !self.map.is_empty() => {
+                self.map.get(&key).copied().unwrap_or(PerceptType::Always)
+            }
             _ => PerceptType::Always,
         }
     }
