@@ -65,6 +65,17 @@ const DIFFERENCES: &[(&str, &str, &str)] = &[
         SWI_LIBRARY,
     ),
     (r#"string_concat("ab", cd, S)"#, r#""#, NO_STRINGS),
+    (r#"string_concat(ab, S, "abcd")"#, r#""#, NO_STRINGS),
+    (
+        r#"atom_concat(1, X, '12')"#,
+        r#"error: type_error(atom,1)"#,
+        ISO_ATOMS,
+    ),
+    (
+        r#"atom_concat(X, 2, '12')"#,
+        r#"error: type_error(atom,2)"#,
+        ISO_ATOMS,
+    ),
     (
         r#"string_chars(S, [h, i]), string_codes(T, [104]), string_to_atom("q", A)"#,
         r#""#,
@@ -172,6 +183,8 @@ const SWI_LIBRARY: &str =
 const SWI_ARITHMETIC: &str = "an SWI arithmetic function scryer 0.10 does not have";
 const NO_RANDOM: &str =
     "no random numbers on scryer: its generator is not seeded by the run, and runs must replay";
+const ISO_ATOMS: &str =
+    "scryer's atom_concat/3 takes atoms only (ISO); SWI's takes any atomic text";
 const FORMAT: &str = "scryer's format_//2 lacks this directive or column handling";
 const BOUNDED: &str = "both engines stop the query with an error; scryer's error is another one";
 
@@ -625,6 +638,10 @@ fn atoms_and_strings() {
         ["X = '', Y = ab", "X = a, Y = b", "X = ab, Y = ''"]
     );
     assert_eq!(one("atom_concat(X, cd, abcd)"), "X = ab");
+    assert!(ask("", "atom_concat(cd, X, abcd)").is_empty());
+    // As in SWI-Prolog, a number given as one part is its text.
+    assert_eq!(one("atom_concat(1, X, '12')"), "X = '2'");
+    assert_eq!(one("atom_concat(X, 2, '12')"), "X = '1'");
     assert_eq!(
         ask("", "sub_atom(abcab, B, 2, A, ab)"),
         ["B = 0, A = 3", "B = 3, A = 0"]
@@ -658,6 +675,7 @@ fn atoms_and_strings() {
         "U = 'ABC', D = abc"
     );
     assert_eq!(one("string_concat(\"ab\", cd, S)"), "S = \"abcd\"");
+    assert_eq!(one("string_concat(ab, S, \"abcd\")"), "S = \"cd\"");
     assert_eq!(
         one("string_chars(S, [h, i]), string_codes(T, [104]), string_to_atom(\"q\", A)"),
         "S = \"hi\", T = \"h\", A = q"

@@ -207,6 +207,20 @@ fn concat(s: &mut Solver, p: u32, k: Kind, name: &str) -> KrResult<Flow> {
         return Ok(unify_flow(s, z, r));
     }
     let whole = need_text(s, p, 2, name, 3)?;
+    if let Some((i, part)) = known_part(s, p) {
+        // As in SWI-Prolog: the other part is what remains of the whole, made only once (the
+        // usual mode, `atom_concat(room, N, R)`, made every prefix and suffix an atom before).
+        let rest = match i {
+            0 => whole.strip_prefix(part.as_str()),
+            _ => whole.strip_suffix(part.as_str()),
+        };
+        let Some(rest) = rest else {
+            return Ok(Flow::Fail);
+        };
+        let r = make(s, k, rest, name, 3)?;
+        let other = s.a(p, 1 - i);
+        return Ok(unify_flow(s, other, r));
+    }
     // Every split is made: quadratic in the length.
     let n = whole.len() as u64;
     super::budget::text_len(s, n * (n + 1) / 2, name, 3)?;
@@ -220,6 +234,15 @@ fn concat(s: &mut Solver, p: u32, k: Kind, name: &str) -> KrResult<Flow> {
     }
     let args = [s.a(p, 0), s.a(p, 1)];
     Ok(enumerate(s, &args, alts))
+}
+
+/// The first or the second argument of a concatenation when it is atomic (a number, atom or
+/// string), with its text: the argument given.
+fn known_part(s: &Solver, p: u32) -> Option<(u32, String)> {
+    (0..2).find_map(|i| match s.ad(p, i) {
+        Cell::Ref(_) | Cell::Ptr(_) => None,
+        c => Some((i, text_of(s, c)?)),
+    })
 }
 
 /// `sub_atom/5` and `sub_string/5`.
