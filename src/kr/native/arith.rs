@@ -128,15 +128,64 @@ fn int_pow(base: i64, exp: i64) -> KrResult<Num> {
     base.checked_pow(e).map(Num::I).ok_or_else(overflow)
 }
 
+/// A step of the iterative evaluation: evaluate a cell, or apply a functor to the values on top.
+#[derive(Clone, Copy)]
+pub(crate) enum Work {
+    Eval(Cell),
+    Apply(Sym, u32),
+}
+
+/// The evaluation stacks, kept in the machine so that evaluating allocates nothing once they
+/// have grown (most expressions are a number or one operation on two small integers).
+#[derive(Default)]
+pub(crate) struct ArithStacks {
+    work: Vec<Work>,
+    vals: Vec<Num>,
+}
+
 impl Solver<'_, '_> {
     /// Evaluates an arithmetic expression.
     pub fn eval(&mut self, c: Cell) -> KrResult<Num> {
-        enum W {
-            Eval(Cell),
-            Apply(Sym, u32),
+        if let Some(n) = self.eval_small(c) {
+            return Ok(n);
         }
-        let mut work = vec![W::Eval(c)];
-        let mut vals: Vec<Num> = Vec::new();
+        let mut stacks = std::mem::take(&mut self.m.arith);
+        stacks.work.clear();
+        stacks.vals.clear();
+        let r = self.eval_with(c, &mut stacks);
+        self.m.arith = stacks;
+        r
+    }
+
+    /// A number, or `+`, `-` or `*` of two integers that does not overflow: the common cases,
+    /// answered without the evaluation stacks. `None` for everything else (including errors).
+    #[inline]
+    fn eval_small(&self, c: Cell) -> Option<Num> {
+        let st = &self.m.st;
+        let p = match st.deref(c) {
+            Cell::Int(i) => return Some(Num::I(i)),
+            Cell::Flt(f) => return Some(Num::F(f)),
+            Cell::Ptr(p) => p,
+            _ => return None,
+        };
+        let Cell::Fun(f, 2) = st.heap[p as usize] else {
+            return None;
+        };
+        let (Cell::Int(x), Cell::Int(y)) = (st.deref(self.a(p, 0)), st.deref(self.a(p, 1))) else {
+            return None;
+        };
+        match f {
+            wk::PLUS => x.checked_add(y),
+            wk::MINUS => x.checked_sub(y),
+            wk::STAR => x.checked_mul(y),
+            _ => None,
+        }
+        .map(Num::I)
+    }
+
+    fn eval_with(&mut self, c: Cell, stacks: &mut ArithStacks) -> KrResult<Num> {
+        let ArithStacks { work, vals } = stacks;
+        work.push(Work::Eval(c));
         let (mut steps, limit) = (0usize, self.m.st.step_limit());
         while let Some(w) = work.pop() {
             // A cyclic expression (`X = f(X), Y is X`) would never end.
@@ -144,7 +193,7 @@ impl Solver<'_, '_> {
                 return Err(self.walk_fault());
             }
             match w {
-                W::Eval(c) => match self.m.st.deref(c) {
+                Work::Eval(c) => match self.m.st.deref(c) {
                     Cell::Int(i) => vals.push(Num::I(i)),
                     Cell::Flt(f) => vals.push(Num::F(f)),
                     Cell::Big(i) => vals.push(bigint::norm(self.m.st.big(i))?),
@@ -175,22 +224,27 @@ impl Solver<'_, '_> {
                             if !matches!(self.ad(p, 1), Cell::Atom(s) if s == wk::NIL) {
                                 return Err(unknown(f, 2));
                             }
-                            work.push(W::Eval(self.a(p, 0)));
+                            work.push(Work::Eval(self.a(p, 0)));
                             continue;
                         }
-                        work.push(W::Apply(f, n));
+                        work.push(Work::Apply(f, n));
                         for i in (0..n).rev() {
-                            work.push(W::Eval(self.a(p, i)));
+                            work.push(Work::Eval(self.a(p, i)));
                         }
                     }
                     Cell::Fun(..) => {}
                 },
-                W::Apply(f, n) => {
-                    let args = vals.split_off(vals.len() - n as usize);
-                    let mut args = args.into_iter();
-                    let v = match (n, args.next(), args.next()) {
-                        (1, Some(x), _) => self.eval1(f, x)?,
-                        (2, Some(x), Some(y)) => eval2(f, x, y)?,
+                Work::Apply(f, n) => {
+                    let v = match n {
+                        1 => {
+                            let x = vals.pop().ok_or_else(|| eval_err("undefined"))?;
+                            self.eval1(f, x)?
+                        }
+                        2 => {
+                            let y = vals.pop().ok_or_else(|| eval_err("undefined"))?;
+                            let x = vals.pop().ok_or_else(|| eval_err("undefined"))?;
+                            eval2(f, x, y)?
+                        }
                         _ => return Err(unknown(f, n as usize)),
                     };
                     vals.push(v);

@@ -10,11 +10,15 @@ use std::sync::Arc;
 pub(crate) const UNSET: Cell = Cell::Ref(u32::MAX);
 
 /// Flattened terms. Inside a `Code`, `Ref(n)` is variable slot `n`, `Ptr(o)` is the offset of a
-/// `Fun` header in `cells`, and `Str(i)` indexes `strs`.
+/// `Fun` header in `cells`, and `Str(i)` indexes `strs`. A compound term is laid out depth
+/// first, so a structure and everything inside it occupy one block of cells, `o..ends[o]`,
+/// laid out as the heap copy will be: building it is one pass over the block.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Code {
     pub cells: Vec<Cell>,
     pub strs: Vec<Arc<str>>,
+    /// For the offset of each `Fun` header, the end of its block (0 elsewhere).
+    ends: Vec<u32>,
 }
 
 /// First-argument key of a clause or goal, for indexing.
@@ -61,6 +65,7 @@ impl Key {
 impl Code {
     /// Appends `t`, numbering its variables through `vars`; returns the root cell.
     pub fn add(&mut self, t: &Term, vars: &mut Vec<Sym>) -> Cell {
+        let start = self.cells.len();
         let mut root = UNSET;
         let mut work: Vec<(Option<usize>, &Term)> = vec![(None, t)];
         while let Some((slot, t)) = work.pop() {
@@ -106,7 +111,30 @@ impl Code {
                 None => root = c,
             }
         }
+        self.mark_blocks(start);
         root
+    }
+
+    /// Records the block ends of the structures added from offset `start` on (a run of
+    /// headers, each followed by its arguments; inner structures come after outer ones).
+    fn mark_blocks(&mut self, start: usize) {
+        self.ends.resize(self.cells.len(), 0);
+        let mut heads = Vec::new();
+        let mut i = start;
+        while let Some(f) = self.cells.get(i) {
+            heads.push(i);
+            i += 1 + f.fun().map_or(0, |f| f.1 as usize);
+        }
+        for &h in heads.iter().rev() {
+            let n = self.cells[h].fun().map_or(0, |f| f.1 as usize);
+            let mut end = (h + 1 + n) as u32;
+            for c in &self.cells[h + 1..h + 1 + n] {
+                if let Cell::Ptr(o) = c {
+                    end = end.max(self.ends[*o as usize]);
+                }
+            }
+            self.ends[h] = end;
+        }
     }
 
     /// Copies a heap term into this code (variables numbered through `vars`, by address).
@@ -114,12 +142,14 @@ impl Code {
         if let c @ (Cell::Atom(_) | Cell::Int(_) | Cell::Flt(_)) = store.deref(c) {
             return c;
         }
+        let start = self.cells.len();
         let mut root = UNSET;
         let mut work: Vec<(Option<usize>, Cell)> = vec![(None, c)];
         let (mut steps, limit) = (0usize, store.step_limit());
         while let Some((slot, c)) = work.pop() {
             if store.runaway(&mut steps, limit, &[c]) {
                 // The solver reports the cyclic term; leave a well-formed placeholder.
+                self.mark_blocks(start);
                 return Cell::Atom(wk::NIL);
             }
             let v = match store.deref(c) {
@@ -160,6 +190,7 @@ impl Code {
                 None => root = v,
             }
         }
+        self.mark_blocks(start);
         root
     }
 
@@ -180,61 +211,46 @@ impl Code {
                 store.new_str(self.strs[i as usize].clone());
                 Cell::Big(store.strs.len() as u32 - 1)
             }
-            Cell::Ptr(off) => {
-                let mut work = std::mem::take(&mut store.build_work);
-                let p = self.build_struct(store, off, slots, &mut work);
-                while let Some((dst, o)) = work.pop() {
-                    let q = self.build_struct(store, o, slots, &mut work);
-                    store.heap[dst as usize] = Cell::Ptr(q);
-                }
-                store.build_work = work;
-                Cell::Ptr(p)
-            }
+            Cell::Ptr(off) => Cell::Ptr(self.build_block(store, off, slots)),
             other => other,
         }
     }
 
-    /// Copies the structure at `off` to the heap; nested structures are left to `work`.
+    /// Copies the block of the structure at `off` to the heap (where it keeps its layout);
+    /// returns the heap address of the copy.
     #[inline]
-    fn build_struct(
-        &self,
-        store: &mut Store,
-        off: u32,
-        slots: &mut [Cell],
-        work: &mut Vec<(u32, u32)>,
-    ) -> u32 {
-        let f = self.cells[off as usize];
-        let n = f.fun().map_or(0, |f| f.1);
-        let p = store.heap.len() as u32;
-        store.heap.push(f);
-        for i in 0..n {
-            let a = p + 1 + i;
-            let c = match self.cells[(off + 1 + i) as usize] {
-                Cell::Ref(k) if (k as usize) < slots.len() => {
-                    let s = &mut slots[k as usize];
-                    if let Cell::Ref(u32::MAX) = *s {
-                        *s = Cell::Ref(a);
+    fn build_block(&self, store: &mut Store, off: u32, slots: &mut [Cell]) -> u32 {
+        let end = self.ends[off as usize] as usize;
+        let base = store.heap.len() as u32;
+        let Store { heap, strs, .. } = store;
+        // Copied as it is, then the cells that mean something else on the heap are rewritten.
+        heap.extend_from_slice(&self.cells[off as usize..end]);
+        for (a, c) in (base..).zip(&mut heap[base as usize..]) {
+            match *c {
+                Cell::Ref(k) => {
+                    *c = match slots.get_mut(k as usize) {
+                        Some(s) => {
+                            if let Cell::Ref(u32::MAX) = *s {
+                                *s = Cell::Ref(a);
+                            }
+                            *s
+                        }
+                        None => Cell::Ref(a),
                     }
-                    *s
                 }
-                Cell::Ref(_) => Cell::Ref(a),
+                Cell::Ptr(o) => *c = Cell::Ptr(o - off + base),
                 Cell::Str(j) => {
-                    store.strs.push(self.strs[j as usize].clone());
-                    Cell::Str(store.strs.len() as u32 - 1)
+                    strs.push(self.strs[j as usize].clone());
+                    *c = Cell::Str(strs.len() as u32 - 1);
                 }
                 Cell::Big(j) => {
-                    store.strs.push(self.strs[j as usize].clone());
-                    Cell::Big(store.strs.len() as u32 - 1)
+                    strs.push(self.strs[j as usize].clone());
+                    *c = Cell::Big(strs.len() as u32 - 1);
                 }
-                Cell::Ptr(o) => {
-                    work.push((a, o));
-                    UNSET
-                }
-                other => other,
-            };
-            store.heap.push(c);
+                _ => {}
+            }
         }
-        p
+        base
     }
 
     /// Like [`Code::unify`], with the common cases (a new variable, a constant) inline.
@@ -411,5 +427,69 @@ impl Cell {
             Cell::Fun(s, n) => Some((s, n)),
             _ => None,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Code, UNSET};
+    use crate::kr::native::store::{Store, VarNames};
+    use crate::syntax::prolog::Reader;
+    use crate::term::Sym;
+
+    /// Builds `text` from code twice (shared slots, as for a clause's goals) and from a copy
+    /// of the heap term (as `findall/3` keeps answers), printing what lands on the heap.
+    fn round_trip(text: &str) -> (String, String, String) {
+        let t = Reader::new("test").term(text, 0).expect("term").term;
+        let mut code = Code::default();
+        let mut syms: Vec<Sym> = Vec::new();
+        let root = code.add(&t, &mut syms);
+        let mut st = Store::default();
+        let mut slots = vec![UNSET; syms.len()];
+        let a = code.build(&mut st, root, &mut slots);
+        let b = code.build(&mut st, root, &mut slots);
+        let mut copy = Code::default();
+        let root2 = copy.add_cell(&st, a, &mut Vec::new());
+        let c = copy.build(&mut st, root2, &mut vec![UNSET; syms.len()]);
+        let mut names = VarNames::new(&[]);
+        let show = |c, names: &mut VarNames| st.to_term(c, names).to_string();
+        (
+            show(a, &mut names),
+            show(b, &mut names),
+            show(c, &mut names),
+        )
+    }
+
+    #[test]
+    fn a_built_term_is_the_compiled_term_with_its_variables_shared() {
+        let (a, b, c) =
+            round_trip("f(g(X, \"s\", h(Y, k(Z))), [X, 1 | Y], 123456789012345678901234567890, X)");
+        assert_eq!(a, b, "built twice from the same slots: the same variables");
+        let vars: Vec<&str> = a
+            .split(|ch: char| !ch.is_alphanumeric() && ch != '_')
+            .filter(|w| w.starts_with('_'))
+            .collect();
+        assert_eq!(vars.len(), 6, "{a}");
+        assert_eq!((vars[0], vars[1]), (vars[3], vars[4]), "{a}");
+        assert_eq!(vars[0], vars[5], "{a}");
+        assert!(
+            vars[0] != vars[1] && vars[1] != vars[2] && vars[0] != vars[2],
+            "{a}"
+        );
+        let shape = |s: &str| {
+            s.split(|ch: char| !ch.is_alphanumeric() && ch != '_')
+                .map(|w| if w.starts_with('_') { "V" } else { w })
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        assert_eq!(
+            shape(&a),
+            shape("f(g(V,\"s\",h(V,k(V))),[V,1|V],123456789012345678901234567890,V)")
+        );
+        assert_eq!(
+            shape(&c),
+            shape(&a),
+            "a copy of the heap term builds the same term"
+        );
     }
 }

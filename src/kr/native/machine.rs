@@ -120,6 +120,7 @@ pub(crate) struct Machine {
     pub cps: Vec<Choice>,
     pub bags: Vec<Bag>,
     pub slots: Vec<Cell>,
+    pub arith: super::arith::ArithStacks,
 }
 
 impl Machine {

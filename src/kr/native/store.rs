@@ -33,7 +33,6 @@ pub(crate) struct Store {
     pairs: Vec<(Cell, Cell)>,
     /// Scratch stacks for [`super::code::Code`] (kept to avoid allocating per call).
     pub code_pairs: Vec<(Cell, Cell)>,
-    pub build_work: Vec<(u32, u32)>,
     /// Set when a traversal met a cyclic term (or an overlong one) and gave up; the solver
     /// turns it into an error.
     pub cyclic: std::cell::Cell<bool>,
