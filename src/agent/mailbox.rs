@@ -10,25 +10,39 @@ const SCAN: usize = 8;
 
 /// True when `pattern` under `s` is the ground term `fact` (walked side by side, nothing built).
 fn same_under(s: &Subst, pattern: &Term, fact: &Term) -> bool {
-    // Messages are small: the walk's stack stays inline.
-    let mut work: smallvec::SmallVec<[(&Term, &Term); 16]> = smallvec::smallvec![(pattern, fact)];
-    while let Some((p, f)) = work.pop() {
+    // Messages are small: the walk's stack stays inline. The walk goes down the first argument
+    // of each compound at once and stacks only the others (most have one or two), and shared
+    // sub-terms are equal without a look inside.
+    let mut work: smallvec::SmallVec<[(&Term, &Term); 8]> = smallvec::SmallVec::new();
+    let (mut p, mut f) = (pattern, fact);
+    loop {
         match (s.walk(p), f) {
             (Term::Var(_), _) => return false,
-            (Term::Compound(a), Term::Compound(b)) => {
+            (Term::Compound(a), Term::Compound(b)) if !std::sync::Arc::ptr_eq(a, b) => {
                 if a.name != b.name || a.args.len() != b.args.len() {
                     return false;
                 }
-                work.extend(a.args.iter().zip(b.args.iter()));
+                for k in (1..a.args.len()).rev() {
+                    work.push((&a.args[k], &b.args[k]));
+                }
+                // Compounds have at least one argument.
+                if let (Some(x), Some(y)) = (a.args.first(), b.args.first()) {
+                    (p, f) = (x, y);
+                    continue;
+                }
             }
+            (Term::Compound(_), Term::Compound(_)) => {}
             (a, b) => {
                 if a != b {
                     return false;
                 }
             }
         }
+        match work.pop() {
+            Some((x, y)) => (p, f) = (x, y),
+            None => return true,
+        }
     }
-    true
 }
 
 /// A mail fact [`Mailbox::delete_matching`] removed; a held `sent/2` fact is built only when
