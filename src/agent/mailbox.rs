@@ -32,6 +32,10 @@ fn same_under(s: &Subst, pattern: &Term, fact: &Term) -> bool {
                 }
             }
             (Term::Compound(_), Term::Compound(_)) => {}
+            // Atoms and integers, nearly every leaf of a message, compared in place.
+            (Term::Atom(a), Term::Atom(b)) if a != b => return false,
+            (Term::Int(a), Term::Int(b)) if a != b => return false,
+            (Term::Atom(_), Term::Atom(_)) | (Term::Int(_), Term::Int(_)) => {}
             (a, b) => {
                 if a != b {
                     return false;
@@ -233,6 +237,15 @@ mod tests {
         let mut s = Subst::new();
         s.bind(Sym::intern("T"), Term::Int(2));
         s.bind(Sym::intern("K"), Term::Int(5));
+        // Another sender (an atom differs) or another token (an integer differs): no match.
+        assert_eq!(
+            mb.delete_matching(&term("received(b, imp(token(T, K)))"), &s),
+            None
+        );
+        assert_eq!(
+            mb.delete_matching(&term("received(a, imp(token(T, 6)))"), &s),
+            None
+        );
         let pattern = term("received(a, imp(token(T, K)))");
         assert_eq!(
             mb.delete_matching(&pattern, &s).map(Deleted::term),
