@@ -30,7 +30,16 @@ fn ring50_passes_every_token_on_one_and_two_threads() {
         );
         assert_eq!(r.count, 5 * 40);
         assert_eq!(r.workers, workers);
+        // Two workers run a second time on one to show the speed-up.
+        assert_eq!(r.render().contains("1 worker"), workers == 2);
     }
+    // `compare=0` leaves the second run out.
+    let r = run(
+        "ring50",
+        &[("agents", 10), ("tokens", 5), ("hops", 40), ("compare", 0)],
+        2,
+    );
+    assert!(!r.render().contains("1 worker"), "{}", r.render());
 }
 
 #[test]

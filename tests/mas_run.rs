@@ -126,6 +126,29 @@ fn same_seed_gives_identical_trace_and_workers_do_not_matter() {
 }
 
 #[test]
+fn a_token_ring_gives_the_same_trace_on_one_two_and_three_workers() {
+    // 31 agents and 10 tokens: most rounds have 10-20 cycles, enough to be shared between
+    // threads (each owning a range of the agents) whenever the pool finds sharing faster,
+    // and it tries sharing now and then in any case.
+    let (a, ta, oa) = run_file("ring.mas2g", &opts(1, 1000));
+    assert_eq!(
+        oa.printed,
+        [("counter".to_string(), "all_arrived(10)".to_string())]
+    );
+    assert_eq!(
+        a.messages,
+        10 * 60 + 10,
+        "every hop, and each token's arrival"
+    );
+    for workers in [2, 3] {
+        let (b, tb, ob) = run_file("ring.mas2g", &opts(workers, 1000));
+        assert_eq!(ta, tb, "{workers} workers: the same trace as one");
+        assert_eq!(a, b);
+        assert_eq!(oa.printed, ob.printed);
+    }
+}
+
+#[test]
 fn stepping_idle_agents_does_not_change_the_trace() {
     let skip = opts(2, 150);
     let every = RunOptions {

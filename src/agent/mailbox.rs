@@ -10,25 +10,43 @@ const SCAN: usize = 8;
 
 /// True when `pattern` under `s` is the ground term `fact` (walked side by side, nothing built).
 fn same_under(s: &Subst, pattern: &Term, fact: &Term) -> bool {
-    // Messages are small: the walk's stack stays inline.
-    let mut work: smallvec::SmallVec<[(&Term, &Term); 16]> = smallvec::smallvec![(pattern, fact)];
-    while let Some((p, f)) = work.pop() {
+    // Messages are small: the walk's stack stays inline. The walk goes down the first argument
+    // of each compound at once and stacks only the others (most have one or two), and shared
+    // sub-terms are equal without a look inside.
+    let mut work: smallvec::SmallVec<[(&Term, &Term); 8]> = smallvec::SmallVec::new();
+    let (mut p, mut f) = (pattern, fact);
+    loop {
         match (s.walk(p), f) {
             (Term::Var(_), _) => return false,
-            (Term::Compound(a), Term::Compound(b)) => {
+            (Term::Compound(a), Term::Compound(b)) if !std::sync::Arc::ptr_eq(a, b) => {
                 if a.name != b.name || a.args.len() != b.args.len() {
                     return false;
                 }
-                work.extend(a.args.iter().zip(b.args.iter()));
+                for k in (1..a.args.len()).rev() {
+                    work.push((&a.args[k], &b.args[k]));
+                }
+                // Compounds have at least one argument.
+                if let (Some(x), Some(y)) = (a.args.first(), b.args.first()) {
+                    (p, f) = (x, y);
+                    continue;
+                }
             }
+            (Term::Compound(_), Term::Compound(_)) => {}
+            // Atoms and integers, nearly every leaf of a message, compared in place.
+            (Term::Atom(a), Term::Atom(b)) if a != b => return false,
+            (Term::Int(a), Term::Int(b)) if a != b => return false,
+            (Term::Atom(_), Term::Atom(_)) | (Term::Int(_), Term::Int(_)) => {}
             (a, b) => {
                 if a != b {
                     return false;
                 }
             }
         }
+        match work.pop() {
+            Some((x, y)) => (p, f) = (x, y),
+            None => return true,
+        }
     }
-    true
 }
 
 /// A mail fact [`Mailbox::delete_matching`] removed; a held `sent/2` fact is built only when
@@ -219,6 +237,15 @@ mod tests {
         let mut s = Subst::new();
         s.bind(Sym::intern("T"), Term::Int(2));
         s.bind(Sym::intern("K"), Term::Int(5));
+        // Another sender (an atom differs) or another token (an integer differs): no match.
+        assert_eq!(
+            mb.delete_matching(&term("received(b, imp(token(T, K)))"), &s),
+            None
+        );
+        assert_eq!(
+            mb.delete_matching(&term("received(a, imp(token(T, 6)))"), &s),
+            None
+        );
         let pattern = term("received(a, imp(token(T, K)))");
         assert_eq!(
             mb.delete_matching(&pattern, &s).map(Deleted::term),

@@ -11,6 +11,7 @@ use super::timing::CHANNEL;
 use super::trace::{Event, TraceLevel};
 use crate::syntax::ast::Mood;
 use crate::term::{well_known as wk, Subst, Sym, Term};
+use smallvec::SmallVec;
 
 /// Wraps content in its mood: `p`, `imp(p)` or `int(p)`.
 pub fn wrap_mood(mood: Mood, content: Term) -> Term {
@@ -21,20 +22,22 @@ pub fn wrap_mood(mood: Mood, content: Term) -> Term {
     }
 }
 
+/// Agent names; a send's usual one receiver stays inline (no allocation per send).
+pub type Names = SmallVec<[Sym; 2]>;
+
 /// The agent names that the terms `ts` of a selector stand for under `s` (atoms, strings and
 /// lists of them); an unbound variable is an error.
-pub fn agent_names(ts: &[Term], s: &Subst) -> Result<Vec<Sym>, Fault> {
+pub fn agent_names(ts: &[Term], s: &Subst) -> Result<Names, Fault> {
     // The usual selector, one name (`(Next).send(...)`), without building a work list.
-    let mut work: Vec<Term> = Vec::with_capacity(ts.len());
     if let [t] = ts {
-        match s.apply(t) {
-            Term::Atom(a) => return Ok(if a == wk::NIL { Vec::new() } else { vec![a] }),
-            other => work.push(other),
+        match s.walk(t) {
+            Term::Atom(a) if *a == wk::NIL => return Ok(Names::new()),
+            Term::Atom(a) => return Ok(smallvec::smallvec![*a]),
+            _ => {}
         }
-    } else {
-        work.extend(ts.iter().rev().map(|t| s.apply(t)));
     }
-    let mut names = Vec::new();
+    let mut work: Vec<Term> = ts.iter().rev().map(|t| s.apply(t)).collect();
+    let mut names = Names::new();
     while let Some(t) = work.pop() {
         match &t {
             Term::Atom(a) if *a != wk::NIL => names.push(*a),
@@ -59,9 +62,9 @@ pub fn agent_names(ts: &[Term], s: &Subst) -> Result<Vec<Sym>, Fault> {
 
 impl Core {
     /// The receiver names of a selector under `s`.
-    fn receivers(&self, to: &Receivers, s: &Subst) -> Result<Vec<Sym>, Fault> {
+    fn receivers(&self, to: &Receivers, s: &Subst) -> Result<Names, Fault> {
         Ok(match to {
-            Receivers::All => self.known.syms().to_vec(),
+            Receivers::All => self.known.syms().iter().copied().collect(),
             Receivers::AllOther => self
                 .known
                 .syms()
@@ -69,7 +72,7 @@ impl Core {
                 .copied()
                 .filter(|n| *n != self.me)
                 .collect(),
-            Receivers::SelfAgent => vec![self.me],
+            Receivers::SelfAgent => smallvec::smallvec![self.me],
             Receivers::Agents(ts) => agent_names(ts, s)?,
         })
     }

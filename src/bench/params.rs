@@ -54,6 +54,19 @@ impl Params {
         }
     }
 
+    /// The switch `key` (`0` or `1`), or `default` when absent.
+    pub fn flag(&self, key: &str, default: bool) -> Result<bool, String> {
+        if let Ok(mut r) = self.read.lock() {
+            r.insert(key.to_string());
+        }
+        match self.values.get(key).map(String::as_str) {
+            None => Ok(default),
+            Some("0") => Ok(false),
+            Some("1") => Ok(true),
+            Some(v) => Err(format!("parameter {key}={v}: expected 0 or 1")),
+        }
+    }
+
     /// Keys given but never read (misspelt parameters).
     pub fn unused(&self) -> Vec<String> {
         let read = self.read.lock().map(|r| r.clone()).unwrap_or_default();
@@ -80,5 +93,10 @@ mod tests {
         let bad = Params::parse(&["hops=x", "agents=0"]).unwrap();
         assert!(bad.get("hops", 1).is_err());
         assert!(bad.get("agents", 1).is_err());
+        let f = Params::parse(&["compare=0", "trace=1", "bad=2"]).unwrap();
+        assert_eq!(f.flag("compare", true), Ok(false));
+        assert_eq!(f.flag("trace", false), Ok(true));
+        assert_eq!(f.flag("absent", true), Ok(true));
+        assert!(f.flag("bad", true).is_err());
     }
 }

@@ -184,7 +184,7 @@ pub fn run(name: &str, params: &Params, workers: usize, tokens: u64) -> Result<R
 /// with the target of 1.6 for two (shown on the first report). With `compare=0` the second run
 /// is left out.
 pub fn ring50(params: &Params, workers: usize) -> Result<Report, String> {
-    let compare = params.get("compare", 1)? != 0 && workers > 1;
+    let compare = params.flag("compare", true)? && workers > 1;
     // Each run's own CPU time: the process total would count the comparison run too.
     let before = super::cpu::process_time();
     let mut report = run("ring50", params, workers, 50)?;

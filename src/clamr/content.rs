@@ -151,7 +151,14 @@ pub fn validate(content: &Term) -> Result<(), String> {
             break;
         }
         check_node(t)?;
-        stack.extend(t.args().iter());
+        // Atomic arguments pass `check_node` by construction: counted, not stacked.
+        for a in t.args() {
+            if matches!(a, Term::Compound(_)) {
+                stack.push(a);
+            } else {
+                seen += 1;
+            }
+        }
     }
     Ok(())
 }

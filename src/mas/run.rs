@@ -189,7 +189,9 @@ impl<'a> Setup<'a> {
         let steered = obs.steers();
         let mut env_finished = false;
         let mut spare: Vec<usize> = Vec::new();
-        // The round's messages; the buffer is kept from round to round.
+        // The round's jobs, outputs and messages; the buffers are kept from round to round.
+        let mut jobs: Vec<Job> = Vec::new();
+        let mut outputs: Vec<(usize, CycleOutput)> = Vec::new();
         let mut sent: Vec<Message> = Vec::new();
         let end = loop {
             if let Some(reason) = self.interrupted_or_over(start, &mut memory_checked, obs) {
@@ -210,7 +212,6 @@ impl<'a> Setup<'a> {
                 candidates.clear();
                 candidates.extend(0..self.slots.len());
             }
-            let mut jobs: Vec<Job> = Vec::with_capacity(candidates.len());
             // Cycles that can do something (new input, or the agent is not waiting).
             let mut due = 0usize;
             for &i in &candidates {
@@ -259,17 +260,14 @@ impl<'a> Setup<'a> {
                 self.pool.with_agent(i, |a| obs.before_step(i, a));
             }
             let clock = Some(tick as f64 * TICK_SECONDS);
-            let outputs = match self.pool.round(jobs, clock) {
-                Ok(o) => o,
-                Err(e) => {
-                    obs.warning(&e.0);
-                    break EndReason::Failure;
-                }
-            };
+            if let Err(e) = self.pool.round_into(&mut jobs, clock, &mut outputs) {
+                obs.warning(&e.0);
+                break EndReason::Failure;
+            }
             let mut actions: Vec<(String, Term)> = Vec::new();
             let mut actors: Vec<usize> = Vec::new();
             let mut sites: Vec<RuntimeError> = Vec::new();
-            for (i, out) in outputs {
+            for (i, out) in outputs.drain(..) {
                 let s = &mut self.slots[i];
                 let was_stopped = s.stats.stopped;
                 s.waiting = out.waiting;

@@ -1,8 +1,11 @@
-//! The worker pool: a round's cycles are claimed a few at a time by whichever thread is free
-//! (the calling thread included), and the outputs are returned in agent-index order, so the
-//! result never depends on thread timing. Claiming instead of handing out fixed shares keeps
-//! a round moving when the machine is busy: a worker thread that waits for a core only takes
-//! work once it runs, and until then the calling thread takes it. Rounds with very few cycles
+//! The worker pool: each thread owns a contiguous range of the agents (the calling thread
+//! included) and runs their cycles of a shared round, claiming them a few at a time; a thread
+//! done with its own part claims what is left of the others'. The outputs are returned in
+//! agent-index order, so the result never depends on thread timing. Owning keeps an agent's
+//! state (its engine heap, fact base, mailbox) in the cache of the core that ran it last, and
+//! a token ring's messages mostly stay within one thread's range; claiming from the others
+//! keeps a round moving when the machine is busy: a worker thread that waits for a core only
+//! takes work once it runs, and until then the others take its part. Rounds with very few cycles
 //! (a token ring moves one agent per round) run entirely on the calling thread: waking a
 //! thread costs more than such a cycle. Between rounds both sides wait by spinning briefly
 //! before they block: rounds are often shorter than putting a thread to sleep and waking it.
@@ -46,22 +49,54 @@ pub type Job = (usize, Vec<Term>, Vec<Message>);
 
 type Done = Vec<(usize, CycleOutput)>;
 
-/// A share of a round: the simulated time the agents' clocks answer, and the cycles to run.
-type Share = (Option<f64>, Vec<Job>);
-
 /// Cycles a thread claims at a time from a shared round: few, so that the last claims end
 /// close together, but enough to keep the claiming itself cheap.
 const CHUNK: usize = 4;
 
-/// A round shared between threads: its jobs, the next one to claim, and what came out.
+/// One thread's part of a shared round: the jobs `next..end` not claimed yet.
+struct Part {
+    next: AtomicUsize,
+    end: usize,
+}
+
+/// A round shared between threads: its jobs (in agent-index order), each thread's part of
+/// them, and what came out.
 struct Round {
     clock: Option<f64>,
     jobs: Vec<Mutex<Option<Job>>>,
-    next: AtomicUsize,
+    /// Part `t` holds the jobs of the agents thread `t` owns (see [`owner`]).
+    parts: Vec<Part>,
     /// Jobs finished (mirrors `collected.finished`, read while spinning).
     finished: AtomicUsize,
     collected: Mutex<Collected>,
     all_done: Condvar,
+}
+
+/// The thread (of `threads`) that owns agent `i` of `agents`: contiguous ranges of agents.
+fn owner(i: usize, agents: usize, threads: usize) -> usize {
+    (i * threads / agents.max(1)).min(threads - 1)
+}
+
+/// The parts of `jobs` (sorted by agent index) owned by each of `threads` threads.
+fn parts(jobs: &[Job], agents: usize, threads: usize) -> Vec<Part> {
+    let mut start = 0;
+    (0..threads)
+        .map(|t| {
+            let end = if t + 1 == threads {
+                jobs.len()
+            } else {
+                // `max`: unsorted jobs still give parts that cover every job once.
+                jobs.partition_point(|j| owner(j.0, agents, threads) <= t)
+                    .max(start)
+            };
+            let p = Part {
+                next: AtomicUsize::new(start),
+                end,
+            };
+            start = end;
+            p
+        })
+        .collect()
 }
 
 /// The outputs of a shared round so far.
@@ -73,33 +108,44 @@ struct Collected {
 }
 
 impl Round {
-    /// Runs claimed chunks of the round's jobs until none is left.
-    fn work(&self, agents: &[Mutex<Agent>]) {
-        let n = self.jobs.len();
-        loop {
-            let from = self.next.fetch_add(CHUNK, Ordering::Relaxed);
-            if from >= n {
-                return;
+    /// Thread `me` runs claimed chunks of its own part of the round, then of the other parts,
+    /// until none is left; what came out is handed over once, at the end.
+    fn work(&self, agents: &[Mutex<Agent>], me: usize) {
+        let mut done = Vec::new();
+        let mut error = None;
+        let mut count = 0;
+        let n = self.parts.len();
+        for part in (0..n).map(|k| &self.parts[(me + k) % n]) {
+            loop {
+                let from = part.next.fetch_add(CHUNK, Ordering::Relaxed);
+                if from >= part.end {
+                    break;
+                }
+                let to = (from + CHUNK).min(part.end);
+                let jobs: Vec<Job> = self.jobs[from..to]
+                    .iter()
+                    .filter_map(|j| j.lock().ok().and_then(|mut j| j.take()))
+                    .collect();
+                if let Err(e) = step(agents, self.clock, jobs, &mut done) {
+                    error.get_or_insert(e);
+                }
+                count += to - from;
             }
-            let to = (from + CHUNK).min(n);
-            let jobs: Vec<Job> = self.jobs[from..to]
-                .iter()
-                .filter_map(|j| j.lock().ok().and_then(|mut j| j.take()))
-                .collect();
-            let mut done = Vec::with_capacity(jobs.len());
-            let result = step(agents, (self.clock, jobs), &mut done);
-            // A poisoned lock can only come from a panic while it was held, which nothing
-            // here does; the outputs are taken all the same.
-            let mut c = self.collected.lock().unwrap_or_else(|e| e.into_inner());
-            c.outputs.append(&mut done);
-            if let Err(e) = result {
-                c.error.get_or_insert(e);
-            }
-            c.finished += to - from;
-            self.finished.store(c.finished, Ordering::Release);
-            if c.finished == n {
-                self.all_done.notify_all();
-            }
+        }
+        if count == 0 {
+            return;
+        }
+        // A poisoned lock can only come from a panic while it was held, which nothing here
+        // does; the outputs are taken all the same.
+        let mut c = self.collected.lock().unwrap_or_else(|e| e.into_inner());
+        c.outputs.append(&mut done);
+        if let Some(e) = error {
+            c.error.get_or_insert(e);
+        }
+        c.finished += count;
+        self.finished.store(c.finished, Ordering::Release);
+        if c.finished == self.jobs.len() {
+            self.all_done.notify_all();
         }
     }
 
@@ -185,8 +231,13 @@ pub struct Pool {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct PoolError(pub String);
 
-fn step(agents: &[Mutex<Agent>], share: Share, done: &mut Done) -> Result<(), PoolError> {
-    let (clock, jobs) = share;
+/// Runs `jobs` on this thread with the agents' clocks at `clock`; outputs go to `done`.
+fn step(
+    agents: &[Mutex<Agent>],
+    clock: Option<f64>,
+    jobs: impl IntoIterator<Item = Job>,
+    done: &mut Done,
+) -> Result<(), PoolError> {
     for (i, percepts, messages) in jobs {
         let cell = agents
             .get(i)
@@ -218,7 +269,7 @@ impl Pool {
             let shared = agents.clone();
             let join = std::thread::Builder::new()
                 .name(format!("agents-{w}"))
-                .spawn(move || work(shared, job_rx))
+                .spawn(move || work(shared, job_rx, w))
                 .map_err(|e| PoolError(format!("cannot start a worker thread: {e}")))?;
             ws.push(Worker {
                 tx: job_tx,
@@ -252,34 +303,47 @@ impl Pool {
     /// by agent index; `clock` is the simulated time `get_time/1` answers (`None`: wall clock).
     pub fn round(
         &self,
-        jobs: Vec<Job>,
+        mut jobs: Vec<Job>,
         clock: Option<f64>,
     ) -> Result<Vec<(usize, CycleOutput)>, PoolError> {
         let mut out = Vec::with_capacity(jobs.len());
+        self.round_into(&mut jobs, clock, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Pool::round`] with the caller's buffers, kept from round to round: takes the jobs out
+    /// of `jobs` and appends the outputs, sorted by agent index, to the empty `out`.
+    pub fn round_into(
+        &self,
+        jobs: &mut Vec<Job>,
+        clock: Option<f64>,
+        out: &mut Vec<(usize, CycleOutput)>,
+    ) -> Result<(), PoolError> {
         let cycles = jobs.len();
         let shareable = cycles >= INLINE_BELOW && !self.workers.is_empty();
         let start = Instant::now();
         if !shareable || !self.costs.share() {
-            step(&self.agents, (clock, jobs), &mut out)?;
+            step(&self.agents, clock, jobs.drain(..), out)?;
             if shareable {
                 self.costs.record(false, start.elapsed(), cycles);
             }
-            out.sort_by_key(|(i, _)| *i);
-            return Ok(out);
+        } else {
+            *out = self.shared(std::mem::take(jobs), clock)?;
+            self.costs.record(true, start.elapsed(), cycles);
         }
-        out = self.shared(jobs, clock)?;
-        self.costs.record(true, start.elapsed(), cycles);
+        // Usually in order already (jobs come in agent order): then a single pass.
         out.sort_by_key(|(i, _)| *i);
-        Ok(out)
+        Ok(())
     }
 
     /// Runs a round on every thread: each takes cycles until none is left. The outputs come
     /// back in no particular order.
     fn shared(&self, jobs: Vec<Job>, clock: Option<f64>) -> Result<Done, PoolError> {
+        let parts = parts(&jobs, self.agents.len(), self.workers());
         let shared = Arc::new(Round {
             clock,
             jobs: jobs.into_iter().map(|j| Mutex::new(Some(j))).collect(),
-            next: AtomicUsize::new(0),
+            parts,
             finished: AtomicUsize::new(0),
             collected: Mutex::new(Collected::default()),
             all_done: Condvar::new(),
@@ -288,7 +352,7 @@ impl Pool {
         for w in &self.workers {
             let _ = w.tx.send(shared.clone());
         }
-        shared.work(&self.agents);
+        shared.work(&self.agents, 0);
         let c = shared.wait();
         match c.error {
             Some(e) => Err(e),
@@ -312,9 +376,10 @@ impl Drop for Pool {
     }
 }
 
-fn work(agents: Agents, rx: Receiver<Arc<Round>>) {
+/// Worker thread `me`: runs its part of each round it is handed (and helps with the others).
+fn work(agents: Agents, rx: Receiver<Arc<Round>>, me: usize) {
     while let Ok(round) = wait(&rx) {
-        round.work(&agents);
+        round.work(&agents, me);
     }
 }
 
@@ -355,21 +420,80 @@ mod tests {
         let alone = Pool::new(agents(n), 1).expect("pool");
         let shared = Pool::new(agents(n), 3).expect("pool");
         assert_eq!(shared.workers(), 3);
-        for round in 0..5 {
+        for round in 0..8 {
+            // Every agent, or (odd rounds) a sparse set that leaves some threads' parts empty.
             let jobs = || {
                 (0..n)
+                    .filter(|i| round % 2 == 0 || i % 3 == 1 || *i > 17)
                     .map(|i| (i, Vec::new(), Vec::new()))
                     .collect::<Vec<Job>>()
             };
             let mut a = Vec::new();
-            step(&alone.agents, (None, jobs()), &mut a).expect("round");
+            step(&alone.agents, None, jobs(), &mut a).expect("round");
             let mut b = shared.shared(jobs(), None).expect("round");
             b.sort_by_key(|(i, _)| *i);
             let (a, b) = (printed(a), printed(b));
             assert_eq!(a, b, "round {round}");
-            assert_eq!(b.len(), n);
+            assert_eq!(b.len(), jobs().len());
             assert!(b.iter().all(|(_, p)| p.len() == 1), "{b:?}");
         }
+    }
+
+    #[test]
+    fn each_thread_owns_a_contiguous_range_and_the_parts_cover_every_job_once() {
+        let jobs = |ids: &[usize]| -> Vec<Job> {
+            ids.iter().map(|&i| (i, Vec::new(), Vec::new())).collect()
+        };
+        let bounds = |p: &[Part]| -> Vec<(usize, usize)> {
+            p.iter()
+                .map(|p| (p.next.load(Ordering::Relaxed), p.end))
+                .collect()
+        };
+        // 10 agents on 3 threads: agents 0-3, 4-6 and 7-9.
+        assert_eq!(
+            (0..10).map(|i| owner(i, 10, 3)).collect::<Vec<_>>(),
+            [0, 0, 0, 0, 1, 1, 1, 2, 2, 2]
+        );
+        let p = parts(&jobs(&[1, 2, 5, 8, 9]), 10, 3);
+        assert_eq!(bounds(&p), [(0, 2), (2, 3), (3, 5)]);
+        // A thread with nothing of its own this round has an empty part.
+        let p = parts(&jobs(&[7, 8]), 10, 3);
+        assert_eq!(bounds(&p), [(0, 0), (0, 0), (0, 2)]);
+        // Jobs out of order still give parts covering each job once.
+        let p = parts(&jobs(&[9, 0, 5]), 10, 3);
+        let b = bounds(&p);
+        assert_eq!((b[0].0, b[2].1), (0, 3));
+        assert!(b.windows(2).all(|w| w[0].1 == w[1].0), "{b:?}");
+    }
+
+    #[test]
+    fn a_thread_done_with_its_part_runs_the_parts_of_threads_that_never_came() {
+        let n = 9;
+        let alone = Pool::new(agents(n), 1).expect("pool");
+        let pool = Pool::new(agents(n), 1).expect("pool");
+        let jobs = || {
+            (0..n)
+                .map(|i| (i, Vec::new(), Vec::new()))
+                .collect::<Vec<Job>>()
+        };
+        // A round split for three threads, of which only the calling thread (0) ever runs.
+        let round = Round {
+            clock: None,
+            parts: parts(&jobs(), n, 3),
+            jobs: jobs().into_iter().map(|j| Mutex::new(Some(j))).collect(),
+            finished: AtomicUsize::new(0),
+            collected: Mutex::new(Collected::default()),
+            all_done: Condvar::new(),
+        };
+        round.work(&pool.agents, 0);
+        let mut c = round.wait();
+        c.outputs.sort_by_key(|(i, _)| *i);
+        let mut a = Vec::new();
+        step(&alone.agents, None, jobs(), &mut a).expect("round");
+        assert_eq!(printed(c.outputs), printed(a));
+        // A thread that comes late finds nothing left and changes nothing.
+        round.work(&pool.agents, 2);
+        assert_eq!(round.finished.load(Ordering::Relaxed), n);
     }
 
     #[test]
