@@ -43,16 +43,33 @@ pub struct Compound {
 
 impl Drop for Compound {
     fn drop(&mut self) {
-        let unique = |t: &Term| matches!(t, Term::Compound(c) if Arc::strong_count(c) == 1);
         if !self.args.iter().any(unique) {
             return;
         }
-        // Move uniquely owned sub-terms onto a heap stack so dropping a long list does not recurse.
-        let mut stack: Vec<Term> = std::mem::take(&mut self.args).into_vec();
-        while let Some(t) = stack.pop() {
-            if let Term::Compound(arc) = t {
-                if let Ok(mut c) = Arc::try_unwrap(arc) {
-                    stack.extend(std::mem::take(&mut c.args).into_vec());
+        // Argument lists whose uniquely owned compounds own compounds in turn wait on a heap
+        // stack, so dropping a long list does not recurse. Most terms are shallow: their
+        // sub-terms are dropped in place and the stack is never allocated.
+        let mut stack = vec![];
+        release(std::mem::take(&mut self.args), &mut stack);
+        while let Some(args) = stack.pop() {
+            release(args, &mut stack);
+        }
+    }
+}
+
+/// True for a compound term nothing else shares (dropping it frees it).
+fn unique(t: &Term) -> bool {
+    matches!(t, Term::Compound(c) if Arc::strong_count(c) == 1)
+}
+
+/// Drops `args`, setting aside the argument lists of unique sub-terms that hold unique
+/// compounds themselves.
+fn release(args: Box<[Term]>, stack: &mut Vec<Box<[Term]>>) {
+    for t in args.into_vec() {
+        if let Term::Compound(arc) = t {
+            if let Ok(mut c) = Arc::try_unwrap(arc) {
+                if c.args.iter().any(unique) {
+                    stack.push(std::mem::take(&mut c.args));
                 }
             }
         }
@@ -659,6 +676,12 @@ mod tests {
         a.hash(&mut h);
         drop(a);
         drop(b);
+        // Nesting in a first argument, with lists inside: dropped without recursion too.
+        let mut deep = Term::atom("z");
+        for i in 0..1_000_000 {
+            deep = Term::compound("f", vec![deep, Term::list([Term::Int(i)])]);
+        }
+        drop(deep);
     }
 
     #[test]
