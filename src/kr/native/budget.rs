@@ -26,7 +26,7 @@ impl Solver<'_, '_> {
     /// Working memory of the query in heap cells (terms, trail, frames, choicepoints, bags).
     pub(crate) fn memory_used(&self) -> u64 {
         let m = &self.m;
-        let bags: usize = m.bags.iter().map(|b| b.code.cells.len()).sum();
+        let bags: usize = m.bags.iter().map(|b| b.code.size_in_cells()).sum();
         m.st.heap.len() as u64
             + m.st.trail.len() as u64 / 4
             + m.frames.len() as u64 * FRAME_CELLS

@@ -63,6 +63,11 @@ impl Key {
 }
 
 impl Code {
+    /// The memory this code takes, in heap cells (a cell is 16 bytes, a block end 4).
+    pub fn size_in_cells(&self) -> usize {
+        self.cells.len() + self.ends.len() / 4
+    }
+
     /// Appends `t`, numbering its variables through `vars`; returns the root cell.
     pub fn add(&mut self, t: &Term, vars: &mut Vec<Sym>) -> Cell {
         let start = self.cells.len();

@@ -133,12 +133,13 @@ impl ScryerEngine {
         } else {
             Term::compound("ans", vars.iter().map(|v| Term::Var(*v)).collect())
         };
-        let world = world_of(view);
-        let (retract, assert, rebuild) = self.sync(world, view);
         if self.worker.is_none() {
+            // Before the mirrors are synced: they must not record facts no machine got.
             self.wait_for_stuck()?;
             self.worker = Some(Worker::start(self.program.clone())?);
         }
+        let world = world_of(view);
+        let (retract, assert, rebuild) = self.sync(world, view);
         let Some(worker) = &self.worker else {
             return Err(machine::fault("the scryer thread did not start"));
         };
