@@ -5,9 +5,9 @@
 //! `forall bel(percept(not(in(R)))) do delete(in(R))`).
 
 use super::kr_bridge::FactBase;
+use crate::kr::fxhash::{FxHashMap, FxHashSet};
 use crate::term::{well_known as wk, Sym, Term};
 use serde::Serialize;
-use std::collections::{BTreeMap, HashSet};
 use std::sync::OnceLock;
 
 /// How the environment sends a percept (and so how long the agent keeps it).
@@ -26,25 +26,28 @@ pub enum PerceptType {
 /// Percept types by `(name, arity)`; unknown percepts are `Always`.
 #[derive(Clone, Debug, Default)]
 pub struct PerceptTypes {
-    map: BTreeMap<(String, usize), PerceptType>,
+    /// Keyed by interned name: looked up for every percept fact of every cycle (membership
+    /// only, so the ids' order never shows).
+    map: FxHashMap<(Sym, usize), PerceptType>,
 }
 
 impl PerceptTypes {
     /// Builds the map from declarations.
     pub fn new(decls: impl IntoIterator<Item = ((String, usize), PerceptType)>) -> PerceptTypes {
         PerceptTypes {
-            map: decls.into_iter().collect(),
+            map: decls
+                .into_iter()
+                .map(|((name, arity), t)| ((Sym::intern(&name), arity), t))
+                .collect(),
         }
     }
 
     /// The type of a percept term.
     pub fn of(&self, t: &Term) -> PerceptType {
         match t.functor() {
-            Some((s, n)) if !self.map.is_empty() => self
-                .map
-                .get(&(s.name().to_string(), n))
-                .copied()
-                .unwrap_or(PerceptType::Always),
+            Some(key) if !self.map.is_empty() => {
+                self.map.get(&key).copied().unwrap_or(PerceptType::Always)
+            }
             _ => PerceptType::Always,
         }
     }
@@ -116,7 +119,7 @@ impl PerceptBase {
         }
         // Predicates whose facts this batch replaces: all `Always` ones, and `OnChange` ones
         // mentioned in the batch.
-        let in_batch: HashSet<&Term> = positive.iter().copied().collect();
+        let in_batch: FxHashSet<&Term> = positive.iter().copied().collect();
         // Membership only (never reaches output), so ordering by id is harmless here.
         let mut mentioned: Vec<(Sym, usize)> =
             positive.iter().filter_map(|p| p.functor()).collect();
