@@ -138,7 +138,13 @@ pub fn evaluate(
                 // Answers of one theta are distinct, and answers that only bind variables
                 // no theta binds differ from those of every other theta: no search needed.
                 let fresh = a.iter().all(|(v, _)| !bound.contains(&v));
-                let full = compose(theta, &a);
+                // Under an empty theta (a condition's first literal, mostly) the answer is
+                // the full answer already: no copy.
+                let full = if theta.is_empty() {
+                    a
+                } else {
+                    compose(theta, &a)
+                };
                 if fresh {
                     next.push_new(full);
                 } else {

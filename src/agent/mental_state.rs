@@ -191,7 +191,7 @@ impl MentalState {
                     }
                     let g = theta.apply(neg);
                     let holds = if g.is_ground() {
-                        self.believes(&g)?
+                        self.believes_ground(&g)?
                     } else {
                         // `not(G)` has no answer exactly when G holds.
                         self.bel_raw(&Term::compound(wk::NOT, vec![g]), usize::MAX)?
@@ -282,6 +282,15 @@ impl MentalState {
         Some(!found.is_empty())
     }
 
+    /// True when the engine is the native one (which answers a ground fact by a lookup, so
+    /// that a lookup here answers alike).
+    fn native(&self) -> bool {
+        matches!(
+            self.engine.try_borrow().as_deref(),
+            Ok(AgentEngine::Native(_))
+        )
+    }
+
     /// True when the engine is the native one and its limits leave room for a query answered
     /// without it (the scryer engine always answers itself).
     fn native_roomy(&self) -> bool {
@@ -297,9 +306,20 @@ impl MentalState {
 
     /// True when `q` has an answer in the belief base.
     pub fn believes(&self, q: &Term) -> Result<bool, Fault> {
+        self.believes_known(q, q.is_ground())
+    }
+
+    /// [`MentalState::believes`] of a term known to be ground.
+    fn believes_ground(&self, q: &Term) -> Result<bool, Fault> {
+        self.believes_known(q, true)
+    }
+
+    /// [`MentalState::believes`], told whether `q` is ground.
+    fn believes_known(&self, q: &Term, ground: bool) -> Result<bool, Fault> {
         // A ground fact only facts answer: present in some base or not (as the engine finds).
         if let Some((name, arity)) = q.functor() {
-            if !self.knowledge.resolves(name, arity) && !is_mail_fact(q) && q.is_ground() {
+            if ground && !self.knowledge.resolves(name, arity) && !is_mail_fact(q) && self.native()
+            {
                 return Ok(self
                     .bases()
                     .iter()
