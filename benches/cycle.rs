@@ -1,7 +1,8 @@
 //! Agent cycle benchmark: cycles per second for a BW4T-like robot agent (40 rules, 200
 //! beliefs, 20 percepts changing per cycle) and for an idle agent. Target: 20,000 cycles/s for
 //! the robot (issue 16: under 25 µs of CPU per cycle). Run with `cargo bench --bench cycle`
-//! (`CYCLE_BENCH_QUICK=1` for a short run). CPU time (this thread's) is printed beside wall time:
+//! (`CYCLE_BENCH_QUICK=1` for a short run; `CYCLE_BENCH_ROWS=robot,idle` runs only the rows whose
+//! names start so). CPU time (this thread's) is printed beside wall time:
 //! on a shared machine wall time varies with other load, CPU time much less.
 
 #[path = "cycle/robot.rs"]
@@ -96,7 +97,17 @@ fn main() {
         ),
         ("idle agent", &idle, false, TraceLevel::Off, 20_000.0),
     ];
+    // `CYCLE_BENCH_ROWS=robot` runs only the rows whose name starts with one of the given
+    // comma-separated prefixes (to profile one row under callgrind).
+    let only = std::env::var("CYCLE_BENCH_ROWS").ok();
+    let wanted = |name: &str| {
+        only.as_deref()
+            .is_none_or(|o| o.split(',').any(|p| name.starts_with(p)))
+    };
     for (name, src, percepts, trace, target) in rows {
+        if !wanted(name) {
+            continue;
+        }
         let (cps, cpu_us, actions) = measure(src, percepts, trace, n);
         println!(
             "{:<42} {:>14.0} {:>10.0} {:>7.2}x {:>12.1}   ({} env actions)",

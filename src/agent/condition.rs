@@ -5,12 +5,11 @@ use super::error::Fault;
 use super::goals::Goal;
 use super::mental_state::{GoalQuery, MentalState};
 use super::program::Lit;
-use crate::kr::fxhash::FxHasher;
+use crate::kr::fxhash::{FxHashMap, FxHasher};
 use crate::kr::native::code::Key;
 use crate::syntax::ast::MentalOp;
 use crate::term::{Subst, Sym, Term};
 use smallvec::SmallVec;
-use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
 
 /// Extends `base` with the bindings of `answer`.
@@ -18,17 +17,19 @@ pub fn compose(base: &Subst, answer: &Subst) -> Subst {
     base.extended(answer)
 }
 
-/// An insertion-ordered set of answers (linear search while small, hashed beyond; the hash
-/// index is built only when a membership test needs it).
+/// An insertion-ordered set of answers: each answer's hash is compared first (a linear scan
+/// of hashes while small, a hash index beyond), the bindings only when hashes are equal.
 #[derive(Default)]
 struct AnswerSet {
     items: Vec<Subst>,
-    index: HashMap<u64, Vec<usize>>,
+    /// The hashes of the first items (computed when a membership test needs them).
+    hashes: Vec<u64>,
+    index: FxHashMap<u64, SmallVec<[usize; 1]>>,
     /// How many of `items` the index covers.
     indexed: usize,
 }
 
-const HASH_FROM: usize = 16;
+const HASH_FROM: usize = 32;
 
 /// A hash of the bindings of `s` that does not depend on their order.
 fn hash_of(s: &Subst) -> u64 {
@@ -48,23 +49,30 @@ fn same_answer(a: &Subst, b: &Subst) -> bool {
 impl AnswerSet {
     /// Adds `s` unless present.
     fn push(&mut self, s: Subst) {
+        while self.hashes.len() < self.items.len() {
+            self.hashes.push(hash_of(&self.items[self.hashes.len()]));
+        }
+        let h = hash_of(&s);
         if self.items.len() < HASH_FROM {
-            if !self.items.iter().any(|i| same_answer(i, &s)) {
+            let mut same = self.hashes.iter().zip(&self.items);
+            if !same.any(|(&hi, i)| hi == h && same_answer(i, &s)) {
+                self.hashes.push(h);
                 self.items.push(s);
             }
             return;
         }
         while self.indexed < self.items.len() {
-            let h = hash_of(&self.items[self.indexed]);
-            self.index.entry(h).or_default().push(self.indexed);
+            let hi = self.hashes[self.indexed];
+            self.index.entry(hi).or_default().push(self.indexed);
             self.indexed += 1;
         }
-        let slot = self.index.entry(hash_of(&s)).or_default();
+        let slot = self.index.entry(h).or_default();
         if slot.iter().any(|&i| same_answer(&self.items[i], &s)) {
             return;
         }
         slot.push(self.items.len());
         self.indexed += 1;
+        self.hashes.push(h);
         self.items.push(s);
     }
 
@@ -130,7 +138,13 @@ pub fn evaluate(
                 // Answers of one theta are distinct, and answers that only bind variables
                 // no theta binds differ from those of every other theta: no search needed.
                 let fresh = a.iter().all(|(v, _)| !bound.contains(&v));
-                let full = compose(theta, &a);
+                // Under an empty theta (a condition's first literal, mostly) the answer is
+                // the full answer already: no copy.
+                let full = if theta.is_empty() {
+                    a
+                } else {
+                    compose(theta, &a)
+                };
                 if fresh {
                     next.push_new(full);
                 } else {
@@ -225,7 +239,20 @@ fn literal(
                 (Some(b), None) => b.goals().iter().collect(),
                 (None, _) => cx.only.into_iter().collect(),
             };
+            // The instance of a query without `_` that matched a goal fact is that fact.
+            let mut plain = true;
+            q.for_each_var(&mut |v| plain &= v != crate::term::well_known::UNDERSCORE);
             for g in goals {
+                if *op != MentalOp::Goal && plain && gq.only_facts {
+                    if let Some(found) = gq.matching_facts(g) {
+                        for (a, fact) in found {
+                            if ms.believes(fact)? == (*op == MentalOp::GoalA) {
+                                raw.push(a);
+                            }
+                        }
+                        continue;
+                    }
+                }
                 let (found, stopped) = ms.in_goal_prepared(g, &gq, cap)?;
                 *cut |= stopped;
                 for a in found {

@@ -7,6 +7,7 @@ use super::goals::{AttentionStack, Goal, GoalBase};
 use super::kr_bridge::{
     AgentEngine, Engine, FactBase, Knowledge, KrError, Limits, NativeEngine, View,
 };
+use super::lookup;
 use super::mailbox::{is_mail_fact, Mailbox};
 use super::models::Models;
 use super::percepts::PerceptBase;
@@ -135,6 +136,9 @@ impl MentalState {
         if self.cannot_hold(q) {
             return Ok((Vec::new(), false));
         }
+        if let Some(r) = self.without_engine(q, theta, cap) {
+            return Ok(r);
+        }
         // A plain fact pattern goes the other way (instantiated, a ground one is a lookup), and
         // so does a conjunction with negations that are lookups once instantiated.
         let whole = q
@@ -177,10 +181,17 @@ impl MentalState {
         while i < parts.len() && !answers.is_empty() {
             let mut next = Vec::new();
             if negation(parts[i]) {
+                let neg = &parts[i].args()[0];
                 for theta in answers {
-                    let g = theta.apply(&parts[i].args()[0]);
+                    if let Some(holds) = self.indexed_holds(neg, &theta) {
+                        if !holds {
+                            next.push(theta);
+                        }
+                        continue;
+                    }
+                    let g = theta.apply(neg);
                     let holds = if g.is_ground() {
-                        self.believes(&g)?
+                        self.believes_ground(&g)?
                     } else {
                         // `not(G)` has no answer exactly when G holds.
                         self.bel_raw(&Term::compound(wk::NOT, vec![g]), usize::MAX)?
@@ -220,13 +231,101 @@ impl MentalState {
     }
 
     fn bel_raw(&self, q: &Term, cap: usize) -> Result<(Vec<Subst>, bool), Fault> {
+        if let Some(r) = self.without_engine(q, &Subst::new(), cap) {
+            return Ok(r);
+        }
         let bases = self.bases();
         let view = View::beliefs(&self.knowledge, &bases);
         self.run(|e| e.query_upto(&view, q, cap), q)
     }
 
+    /// The answers of `q` under `theta` when they can be had without the engine (see
+    /// `lookup.rs`): a fact pattern only facts answer, or a comparison of two integers.
+    fn without_engine(&self, q: &Term, theta: &Subst, cap: usize) -> Option<(Vec<Subst>, bool)> {
+        let (name, arity) = q.functor()?;
+        if !self.native_roomy() {
+            return None;
+        }
+        if self.knowledge.resolves(name, arity) {
+            let holds = lookup::int_comparison(q, theta)?;
+            let out = if holds {
+                vec![Subst::new()]
+            } else {
+                Vec::new()
+            };
+            let cut = out.len() >= cap;
+            return Some((out, cut));
+        }
+        if is_mail_fact(q) {
+            return None;
+        }
+        lookup::fact_answers(&self.bases(), q, theta, cap)
+    }
+
+    /// Whether the fact pattern `q` under `theta` matches a fact, found without building the
+    /// instantiated pattern when its first argument is an atom or integer (then the index
+    /// holds few candidates); `None`: not decided here.
+    fn indexed_holds(&self, q: &Term, theta: &Subst) -> Option<bool> {
+        let (name, arity) = q.functor()?;
+        let first = match q.args().first()? {
+            Term::Var(v) => theta.get(*v)?,
+            t => t,
+        };
+        if !matches!(first, Term::Atom(_) | Term::Int(_))
+            || self.knowledge.resolves(name, arity)
+            || is_mail_fact(q)
+            || !self.native_roomy()
+        {
+            return None;
+        }
+        let (found, _) = lookup::fact_answers(&self.bases(), q, theta, 1)?;
+        Some(!found.is_empty())
+    }
+
+    /// True when the engine is the native one (which answers a ground fact by a lookup, so
+    /// that a lookup here answers alike).
+    fn native(&self) -> bool {
+        matches!(
+            self.engine.try_borrow().as_deref(),
+            Ok(AgentEngine::Native(_))
+        )
+    }
+
+    /// True when the engine is the native one and its limits leave room for a query answered
+    /// without it (the scryer engine always answers itself).
+    fn native_roomy(&self) -> bool {
+        match self.engine.try_borrow() {
+            Ok(e) => match &*e {
+                AgentEngine::Native(n) => lookup::roomy(&n.limits),
+                #[allow(unreachable_patterns)]
+                _ => false,
+            },
+            Err(_) => false,
+        }
+    }
+
     /// True when `q` has an answer in the belief base.
     pub fn believes(&self, q: &Term) -> Result<bool, Fault> {
+        self.believes_known(q, q.is_ground())
+    }
+
+    /// [`MentalState::believes`] of a term known to be ground.
+    fn believes_ground(&self, q: &Term) -> Result<bool, Fault> {
+        self.believes_known(q, true)
+    }
+
+    /// [`MentalState::believes`], told whether `q` is ground.
+    fn believes_known(&self, q: &Term, ground: bool) -> Result<bool, Fault> {
+        // A ground fact only facts answer: present in some base or not (as the engine finds).
+        if let Some((name, arity)) = q.functor() {
+            if ground && !self.knowledge.resolves(name, arity) && !is_mail_fact(q) && self.native()
+            {
+                return Ok(self
+                    .bases()
+                    .iter()
+                    .any(|b| b.has_pred(name, arity) && b.contains(q)));
+            }
+        }
         if self.cannot_hold(q) {
             return Ok(false);
         }
@@ -337,6 +436,14 @@ impl MentalState {
         if !u.is_ground() {
             return Err(Fault::new(format!("update {u} is not ground")));
         }
+        // One positive literal (the usual insert): no lists to split it into.
+        if !u.is_functor(wk::COMMA, 2) && !u.is_functor(wk::NOT, 1) && !u.is_functor(wk::TRUE, 0) {
+            if u.functor().is_none() {
+                return Err(Fault::new(format!("{u} cannot be a belief")));
+            }
+            self.add_fact(u, events);
+            return Ok(());
+        }
         let mut add = Vec::new();
         let mut del = Vec::new();
         for lit in u.conjuncts() {
@@ -369,6 +476,13 @@ impl MentalState {
     /// allowed only where it names a stored message that has them itself (an open question):
     /// that very message is removed.
     pub fn delete(&mut self, u: &Term, events: &mut Vec<Event>) -> Result<(), Fault> {
+        // One ground literal (the usual delete): removed at once.
+        if !u.is_functor(wk::COMMA, 2) && !u.is_functor(wk::NOT, 1) && u.is_ground() {
+            if !u.is_functor(wk::TRUE, 0) {
+                self.remove_fact(u, events);
+            }
+            return Ok(());
+        }
         let lits = u.conjuncts();
         // The stored messages that the open literals name (allocated only when there are any).
         let mut open = Vec::new();
@@ -469,8 +583,7 @@ fn first_conjunct(q: &Term) -> &Term {
 /// own (`not(p(X, _))`) is not, and the engine runs the whole conjunction at once.
 fn segmented(q: &Term, theta: &Subst) -> bool {
     let negation = |t: &Term| t.is_functor(wk::NOT, 1) || t.is_functor(wk::NAF, 1);
-    let mut lookup = false;
-    let mut before: SmallVec<[&Term; 8]> = SmallVec::new();
+    let mut parts: SmallVec<[&Term; 8]> = SmallVec::new();
     let mut cur = q;
     loop {
         let (part, rest) = if cur.is_functor(wk::COMMA, 2) {
@@ -481,26 +594,38 @@ fn segmented(q: &Term, theta: &Subst) -> bool {
         if part.is_functor(wk::CUT, 0) {
             return false;
         }
-        if negation(part) && !lookup {
-            let mut bound = true;
-            part.for_each_var(&mut |v| {
-                bound &= theta.get(v).is_some() || before.iter().any(|b| mentions(b, v));
-            });
-            lookup = bound;
-        }
-        before.push(part);
+        parts.push(part);
         match rest {
             Some(r) => cur = r,
-            None => return before.len() > 1 && lookup,
+            None => break,
         }
     }
+    // Asked for every condition: most have no negation, and walk no variables.
+    parts.len() > 1
+        && parts.iter().enumerate().any(|(i, part)| {
+            negation(part)
+                && all_vars(part, |v| {
+                    theta.get(v).is_some() || parts[..i].iter().any(|b| mentions(b, v))
+                })
+        })
+}
+
+/// True when `ok` holds for every variable of `t` (walked without allocating while shallow).
+fn all_vars(t: &Term, mut ok: impl FnMut(Sym) -> bool) -> bool {
+    let mut stack: SmallVec<[&Term; 16]> = smallvec![t];
+    while let Some(t) = stack.pop() {
+        match t {
+            Term::Var(v) if !ok(*v) => return false,
+            Term::Compound(c) => stack.extend(c.args.iter()),
+            _ => {}
+        }
+    }
+    true
 }
 
 /// True when variable `v` occurs in `t`.
 fn mentions(t: &Term, v: Sym) -> bool {
-    let mut found = false;
-    t.for_each_var(&mut |w| found |= w == v);
-    found
+    !all_vars(t, |w| w != v)
 }
 
 /// A query about goals, prepared once for all the goals it is asked of.
@@ -536,15 +661,26 @@ impl<'q> GoalQuery<'q> {
     /// goal has facts of the query's predicate and knowledge does not define it (then the
     /// engine would only match those facts too). `None`: ask the engine.
     fn facts_only(&self, g: &Goal) -> Option<Vec<Subst>> {
+        Some(
+            self.matching_facts(g)?
+                .into_iter()
+                .map(|(a, _)| a)
+                .collect(),
+        )
+    }
+
+    /// [`GoalQuery::facts_only`] with the goal fact each answer matched (the query
+    /// instantiated by the answer, when the query has no anonymous `_` of its own).
+    pub fn matching_facts<'g>(&self, g: &'g Goal) -> Option<Vec<(Subst, &'g Term)>> {
         let key = self.key?;
         if !g.facts.iter().any(|f| f.functor() == Some(key)) {
             return None;
         }
-        let mut out: Vec<Subst> = Vec::new();
+        let mut out: Vec<(Subst, &Term)> = Vec::new();
         for f in g.facts.iter().filter(|f| f.functor() == Some(key)) {
             let mut a = Subst::new();
-            if match_fact(self.query, f, &mut a) && !out.contains(&a) {
-                out.push(a);
+            if match_fact(self.query, f, &mut a) && !out.iter().any(|(b, _)| *b == a) {
+                out.push((a, f));
             }
         }
         Some(out)

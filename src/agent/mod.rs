@@ -31,6 +31,7 @@ pub mod error;
 pub mod goals;
 pub mod kr_bridge;
 pub mod load;
+mod lookup;
 pub mod mailbox;
 pub mod mental_state;
 mod mentions;

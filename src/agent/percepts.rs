@@ -5,10 +5,9 @@
 //! `forall bel(percept(not(in(R)))) do delete(in(R))`).
 
 use super::kr_bridge::FactBase;
-use crate::kr::fxhash::FxHashMap;
+use crate::kr::fxhash::{FxHashMap, FxHashSet};
 use crate::term::{well_known as wk, Sym, Term};
 use serde::Serialize;
-use std::collections::HashSet;
 use std::sync::OnceLock;
 
 /// How the environment sends a percept (and so how long the agent keeps it).
@@ -27,8 +26,8 @@ pub enum PerceptType {
 /// Percept types by `(name, arity)`; unknown percepts are `Always`.
 #[derive(Clone, Debug, Default)]
 pub struct PerceptTypes {
-    /// Keyed by symbol: every stored percept is looked up here every cycle. Only looked up,
-    /// never iterated, so the map's order cannot reach any output.
+    /// Keyed by interned name: looked up for every percept fact of every cycle (membership
+    /// only, so the ids' order never shows).
     map: FxHashMap<(Sym, usize), PerceptType>,
 }
 
@@ -38,7 +37,7 @@ impl PerceptTypes {
         PerceptTypes {
             map: decls
                 .into_iter()
-                .map(|((name, n), t)| ((Sym::intern(&name), n), t))
+                .map(|((name, arity), t)| ((Sym::intern(&name), arity), t))
                 .collect(),
         }
     }
@@ -120,7 +119,7 @@ impl PerceptBase {
         }
         // Predicates whose facts this batch replaces: all `Always` ones, and `OnChange` ones
         // mentioned in the batch.
-        let in_batch: HashSet<&Term> = positive.iter().copied().collect();
+        let in_batch: FxHashSet<&Term> = positive.iter().copied().collect();
         // Membership only (never reaches output), so ordering by id is harmless here.
         let mut mentioned: Vec<(Sym, usize)> =
             positive.iter().filter_map(|p| p.functor()).collect();

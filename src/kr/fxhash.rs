@@ -56,3 +56,6 @@ impl Hasher for FxHasher {
 
 /// A `HashMap` with [`FxHasher`]. Never iterate it where order could reach output.
 pub type FxHashMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
+
+/// A `HashSet` with [`FxHasher`]. Never iterate it where order could reach output.
+pub type FxHashSet<K> = std::collections::HashSet<K, BuildHasherDefault<FxHasher>>;
