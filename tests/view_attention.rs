@@ -118,15 +118,7 @@ fn the_panel_shows_the_attention_stack_in_a_live_run() {
     cmd.args(["run", MAS, "--max-cycles", "3000", "--view"]);
     let served = Served::start(cmd);
     // The run is paced for watching; the picker is done by round 6.
-    for _ in 0..600 {
-        let tick = json(&served.url, "/api/info")["control"]["tick"]
-            .as_u64()
-            .unwrap();
-        if tick >= 10 {
-            break;
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    }
+    served.wait_for_tick(10);
     let mut b = Browser::launch(&chromium, &dir.join("profile"));
     let mut tab = b.open(&served.url);
     // The agent list stays put while the run goes on: an element replaced between a press

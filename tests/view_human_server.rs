@@ -24,13 +24,6 @@ fn error_of(answer: &(u16, Value)) -> String {
     answer.1["error"].as_str().unwrap_or_default().to_string()
 }
 
-/// The live run's tick as its page sees it.
-fn tick(url: &str) -> u64 {
-    json(url, "/api/info")["control"]["tick"]
-        .as_u64()
-        .unwrap_or(0)
-}
-
 /// Waits until the run has announced its HumanBots.
 fn announced(url: &str) -> Value {
     let end = Instant::now() + Duration::from_secs(120);
@@ -128,12 +121,7 @@ fn bad_player_requests_get_clear_errors_and_the_run_goes_on() {
     );
 
     // The run went on through all of it.
-    let before = tick(&url);
-    let end = Instant::now() + Duration::from_secs(60);
-    while tick(&url) <= before {
-        assert!(Instant::now() < end, "the run stopped at tick {before}");
-        std::thread::sleep(Duration::from_millis(100));
-    }
+    served.wait_for_tick(served.tick() + 1);
     // Leaving frees the robot for the next person.
     assert_eq!(post(&url, "/api/play/leave", json!({"token": mine})).0, 200);
     assert_eq!(json(&url, "/api/play")["robots"][0]["taken"], false);
@@ -278,15 +266,7 @@ fn two_people_play_a_robot_each() {
         .as_u64()
         .unwrap()
         .max(xb["tick"].as_u64().unwrap());
-    let end = Instant::now() + Duration::from_secs(60);
-    while tick(&url) < then + 5 {
-        assert!(
-            Instant::now() < end,
-            "the run stopped before tick {}",
-            then + 5
-        );
-        std::thread::sleep(Duration::from_millis(50));
-    }
+    served.wait_for_tick(then + 5);
     // Each page lists only its own robot's requests.
     let sa = json(&url, &format!("/api/play?token={ta}"));
     let mine: Vec<&str> = sa["requests"]

@@ -7,7 +7,6 @@ mod view_support;
 
 use goal::view::{serve, Site, WhyProvider};
 use std::sync::Arc;
-use std::time::Duration;
 use view_support::*;
 
 /// A trace of the default team's first `ticks` ticks.
@@ -103,17 +102,7 @@ fn a_live_run_is_drawn_as_it_goes() {
     cmd.args(["run", "--view", "--max-ticks", "3000"]);
     let served = Served::start(cmd);
     // Wait until the run (paced at 100 ticks per second) is past tick 150.
-    let mut tick = 0;
-    for _ in 0..600 {
-        tick = json(&served.url, "/api/info")["control"]["tick"]
-            .as_u64()
-            .unwrap();
-        if tick >= 150 {
-            break;
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    assert!(tick >= 150, "the live run advances");
+    served.wait_for_tick(150);
     let a = dump_dom(
         &browser,
         &dir.join("p1"),

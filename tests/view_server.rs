@@ -171,30 +171,20 @@ fn the_page_pauses_steps_and_paces_a_live_run() {
     let mut cmd = goal();
     cmd.args(["run", "--view", "--max-ticks", "100000"]);
     let served = Served::start(cmd);
-    let tick = |s: &Served| {
-        json(&s.url, "/api/info")["control"]["tick"]
-            .as_u64()
-            .unwrap()
-    };
     let (status, body) = http("POST", &served.url, "/api/control?speed=20");
     assert_eq!(status, 200, "{body}");
     // The control's tick is the last one the run reached (0 before its first round).
-    for _ in 0..600 {
-        if tick(&served) >= 5 {
-            break;
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
+    served.wait_for_tick(5);
     let (status, _) = http("POST", &served.url, "/api/control?pause");
     assert_eq!(status, 200);
     std::thread::sleep(Duration::from_millis(300));
-    let t1 = tick(&served);
+    let t1 = served.tick();
     std::thread::sleep(Duration::from_millis(500));
-    assert_eq!(tick(&served), t1, "a paused run stands still");
+    assert_eq!(served.tick(), t1, "a paused run stands still");
     http("POST", &served.url, "/api/control?step");
     let mut t2 = t1;
     for _ in 0..100 {
-        t2 = tick(&served);
+        t2 = served.tick();
         if t2 > t1 {
             break;
         }
@@ -202,13 +192,13 @@ fn the_page_pauses_steps_and_paces_a_live_run() {
     }
     assert_eq!(t2, t1 + 1, "one step is one tick");
     std::thread::sleep(Duration::from_millis(300));
-    let t3 = tick(&served);
+    let t3 = served.tick();
     assert_eq!(t3, t1 + 1, "and then it waits again (t1 {t1}, t2 {t2})");
     http("POST", &served.url, "/api/control?play");
     // Playing again: the tick moves on (waited for, not timed: the machine may be loaded).
     let moved = (0..500).any(|_| {
         std::thread::sleep(Duration::from_millis(20));
-        tick(&served) > t1 + 1
+        served.tick() > t1 + 1
     });
     assert!(moved, "playing again");
     let (status, body) = http("POST", &served.url, "/api/control?speed=fast");

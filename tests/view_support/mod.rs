@@ -115,6 +115,29 @@ impl Served {
         }
     }
 
+    /// The last tick the live run reached (0 before its first round).
+    pub fn tick(&self) -> u64 {
+        json(&self.url, "/api/info")["control"]["tick"]
+            .as_u64()
+            .unwrap_or(0)
+    }
+
+    /// Waits (up to a minute) until the live run is at tick `n` or past it; the tick reached.
+    pub fn wait_for_tick(&self, n: u64) -> u64 {
+        let end = Instant::now() + Duration::from_secs(60);
+        loop {
+            let t = self.tick();
+            if t >= n {
+                return t;
+            }
+            assert!(
+                Instant::now() < end,
+                "the live run stays at tick {t}, not {n}"
+            );
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+
     /// Sends SIGINT and waits for the exit code.
     pub fn interrupt(mut self) -> Option<i32> {
         unsafe {
