@@ -436,16 +436,8 @@ impl MentalState {
         if !u.is_ground() {
             return Err(Fault::new(format!("update {u} is not ground")));
         }
-        // One positive literal (the usual insert): no lists to split it into.
-        if !u.is_functor(wk::COMMA, 2) && !u.is_functor(wk::NOT, 1) && !u.is_functor(wk::TRUE, 0) {
-            if u.functor().is_none() {
-                return Err(Fault::new(format!("{u} cannot be a belief")));
-            }
-            self.add_fact(u, events);
-            return Ok(());
-        }
-        let mut add = Vec::new();
-        let mut del = Vec::new();
+        let mut add: SmallVec<[&Term; 4]> = SmallVec::new();
+        let mut del: SmallVec<[&Term; 4]> = SmallVec::new();
         for lit in u.conjuncts() {
             if lit.is_functor(wk::TRUE, 0) {
                 continue;
@@ -476,13 +468,6 @@ impl MentalState {
     /// allowed only where it names a stored message that has them itself (an open question):
     /// that very message is removed.
     pub fn delete(&mut self, u: &Term, events: &mut Vec<Event>) -> Result<(), Fault> {
-        // One ground literal (the usual delete): removed at once.
-        if !u.is_functor(wk::COMMA, 2) && !u.is_functor(wk::NOT, 1) && u.is_ground() {
-            if !u.is_functor(wk::TRUE, 0) {
-                self.remove_fact(u, events);
-            }
-            return Ok(());
-        }
         let lits = u.conjuncts();
         // The stored messages that the open literals name (allocated only when there are any).
         let mut open = Vec::new();

@@ -478,9 +478,10 @@ impl Term {
         out
     }
 
-    /// Splits a conjunction `(a, b, c)` into its conjuncts `[a, b, c]`.
-    pub fn conjuncts(&self) -> Vec<&Term> {
-        let mut out = Vec::new();
+    /// Splits a conjunction `(a, b, c)` into its conjuncts `[a, b, c]` (inline up to four: most
+    /// updates and conditions are short, and this runs for every one).
+    pub fn conjuncts(&self) -> SmallVec<[&Term; 4]> {
+        let mut out = SmallVec::new();
         let mut cur = self;
         while let Term::Compound(c) = cur {
             if c.name == wk::COMMA && c.args.len() == 2 {
