@@ -1,7 +1,7 @@
 //! The environment interface is not BW4T-specific: a toy environment (a counter per entity)
-//! runs on the environment thread in lock-step mode with typed percepts.
+//! runs behind an environment handle in lock-step mode with typed percepts.
 
-use goal::env::thread::{EnvHandle, Mode};
+use goal::env::thread::{EnvError, EnvHandle, Mode};
 use goal::env::{ActionResult, EntityInfo, Environment, PerceptDecl, PerceptFilter, PerceptType};
 use goal::term::Term;
 
@@ -139,4 +139,51 @@ fn a_toy_environment_runs_in_lock_step_with_typed_percepts() {
     let r = h.round(vec![("c0".into(), Term::atom("inc"))]).unwrap();
     assert!(r.finished);
     drop(h);
+}
+
+/// A counter world whose `explode` action panics (a bug in an environment).
+struct Fragile(Counters);
+
+impl Environment for Fragile {
+    fn entities(&self) -> Vec<EntityInfo> {
+        self.0.entities()
+    }
+    fn declarations(&self) -> Vec<PerceptDecl> {
+        self.0.declarations()
+    }
+    fn perform(&mut self, entity: &str, action: &Term) -> ActionResult {
+        if *action == Term::atom("explode") {
+            panic!("the toy environment broke");
+        }
+        self.0.perform(entity, action)
+    }
+    fn tick(&mut self) {
+        self.0.tick()
+    }
+    fn ticks(&self) -> u64 {
+        self.0.ticks()
+    }
+    fn percepts(&mut self, entity: &str) -> Vec<Term> {
+        self.0.percepts(entity)
+    }
+    fn is_finished(&self) -> bool {
+        self.0.is_finished()
+    }
+    fn stats(&self) -> serde_json::Value {
+        self.0.stats()
+    }
+}
+
+#[test]
+fn a_lock_step_environment_that_panics_stops_with_an_error_value() {
+    let h = EnvHandle::spawn(Box::new(Fragile(Counters::new(1))), Mode::LockStep);
+    let r = h.round(vec![("c0".into(), Term::atom("inc"))]).unwrap();
+    assert_eq!(r.tick, 1);
+    // The panic does not reach the caller: the environment is stopped from then on.
+    let boom = h.round(vec![("c0".into(), Term::atom("explode"))]);
+    assert_eq!(boom.err(), Some(EnvError::Stopped));
+    assert_eq!(h.status().err(), Some(EnvError::Stopped));
+    assert_eq!(h.round(vec![]).err(), Some(EnvError::Stopped));
+    assert_eq!(h.perceive(&[]).err(), Some(EnvError::Stopped));
+    h.stop();
 }

@@ -1,28 +1,34 @@
-//! Runs an [`Environment`] on its own thread and talks to it over `crossbeam-channel`.
+//! Runs an [`Environment`] behind one handle, in lock-step or in real time.
 //!
 //! Two modes:
-//! * **lock-step**: the caller sends one [`EnvHandle::round`] at a time (a list of
+//! * **lock-step**: the caller asks for one [`EnvHandle::round`] at a time (a list of
 //!   (entity, action) pairs in the order to apply them); the environment applies them in that
-//!   order, advances exactly one tick and replies with every action result and every entity's
-//!   percept batch. Nothing happens between rounds, so runs are deterministic.
-//! * **real-time**: the environment ticks at a fixed rate; actions submitted with
-//!   [`EnvHandle::submit`]/[`EnvHandle::act`] are applied at the next tick in arrival order;
-//!   percept batches are pulled with [`EnvHandle::perceive`].
+//!   order, advances exactly one tick and returns every action result and every entity's
+//!   percept batch. Nothing happens between rounds, so runs are deterministic. The caller's own
+//!   thread steps the environment: it would only wait for another thread's answer, and handing
+//!   each round over between threads cost more system time than the whole tick.
+//! * **real-time**: the environment ticks at a fixed rate on its own thread and is talked to
+//!   over `crossbeam-channel`; actions submitted with [`EnvHandle::submit`]/[`EnvHandle::act`]
+//!   are applied at the next tick in arrival order; percept batches are pulled with
+//!   [`EnvHandle::perceive`].
 //!
-//! Errors are values: a stopped or crashed environment thread gives [`EnvError::Stopped`].
-//! Dropping the handle (or [`EnvHandle::stop`]) stops and joins the thread.
+//! Errors are values: a stopped environment, or one that panicked, gives
+//! [`EnvError::Stopped`]. Dropping the handle (or [`EnvHandle::stop`]) stops the environment
+//! (and joins its thread).
 
 use super::{ActionResult, EntityInfo, Environment, PerceptDecl};
 use crate::term::Term;
 use crossbeam_channel::{bounded, unbounded, Receiver, RecvTimeoutError, Sender};
 use serde::Serialize;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::Mutex;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 /// How the environment thread advances time.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Mode {
-    /// One tick per [`EnvHandle::round`].
+    /// One tick per [`EnvHandle::round`], stepped on the caller's thread.
     LockStep,
     /// Ticks at the given rate (ticks per second; values <= 0 mean as fast as possible).
     RealTime { ticks_per_second: f64 },
@@ -81,9 +87,9 @@ type Batches = Vec<(String, Vec<Term>)>;
 /// A real-time action waiting for the next tick, with where to send its result.
 type Queued = (String, Term, Sender<Result<ActionResult, EnvError>>);
 
+/// A request to a real-time environment thread.
 enum Request {
     Info(Sender<EnvInfo>),
-    Round(Vec<(String, Term)>, Sender<Result<RoundReply, EnvError>>),
     Perceive(Vec<String>, Sender<Batches>),
     Act(String, Term, Sender<Result<ActionResult, EnvError>>),
     Status(Sender<EnvStatus>),
@@ -94,46 +100,80 @@ enum Request {
     Stop,
 }
 
-/// The caller's side of an environment thread.
+/// The caller's side of an environment.
 pub struct EnvHandle {
-    tx: Sender<Request>,
-    join: Option<JoinHandle<()>>,
+    place: Place,
 }
 
+/// Where the environment runs.
+enum Place {
+    /// Lock-step, on the caller's thread; `None` once it panicked.
+    Here(Mutex<Option<Box<dyn Environment>>>),
+    /// Real-time, on its own thread.
+    Thread {
+        tx: Sender<Request>,
+        join: Option<JoinHandle<()>>,
+    },
+}
+
+const ROUNDS_ARE_LOCK_STEP: EnvError =
+    EnvError::WrongMode("rounds are for lock-step mode; use submit()/act() in real-time mode");
+const ACTS_ARE_REAL_TIME: EnvError =
+    EnvError::WrongMode("single actions are for real-time mode; use round() in lock-step mode");
+
 impl EnvHandle {
-    /// Moves `env` onto a new thread running in `mode`.
+    /// Takes `env` to run in `mode` (real-time: on a new thread).
     pub fn spawn(env: Box<dyn Environment>, mode: Mode) -> EnvHandle {
-        let (tx, rx) = unbounded();
-        let join = std::thread::Builder::new()
-            .name("environment".into())
-            .spawn(move || match mode {
-                Mode::LockStep => run_lock_step(env, rx),
-                Mode::RealTime { ticks_per_second } => run_real_time(env, rx, ticks_per_second),
-            })
-            .ok();
-        EnvHandle { tx, join }
+        let place = match mode {
+            Mode::LockStep => Place::Here(Mutex::new(Some(env))),
+            Mode::RealTime { ticks_per_second } => {
+                let (tx, rx) = unbounded();
+                let join = std::thread::Builder::new()
+                    .name("environment".into())
+                    .spawn(move || run_real_time(env, rx, ticks_per_second))
+                    .ok();
+                Place::Thread { tx, join }
+            }
+        };
+        EnvHandle { place }
     }
 
-    fn ask<T>(&self, make: impl FnOnce(Sender<T>) -> Request) -> Result<T, EnvError> {
-        let (tx, rx) = bounded(1);
-        self.tx.send(make(tx)).map_err(|_| EnvError::Stopped)?;
-        rx.recv().map_err(|_| EnvError::Stopped)
+    /// Runs `here` on a lock-step environment, or asks the real-time thread with `there`.
+    fn call<T>(
+        &self,
+        here: impl FnOnce(&mut dyn Environment) -> T,
+        there: impl FnOnce(Sender<T>) -> Request,
+    ) -> Result<T, EnvError> {
+        match &self.place {
+            Place::Here(env) => step(env, here),
+            Place::Thread { tx, .. } => {
+                let (reply, rx) = bounded(1);
+                tx.send(there(reply)).map_err(|_| EnvError::Stopped)?;
+                rx.recv().map_err(|_| EnvError::Stopped)
+            }
+        }
     }
 
     /// The entities and percept declarations.
     pub fn info(&self) -> Result<EnvInfo, EnvError> {
-        self.ask(Request::Info)
+        self.call(|env| info(env), Request::Info)
     }
 
     /// Lock-step: applies `actions` in order, advances one tick, returns results and percepts.
     pub fn round(&self, actions: Vec<(String, Term)>) -> Result<RoundReply, EnvError> {
-        self.ask(|tx| Request::Round(actions, tx))?
+        match &self.place {
+            Place::Here(env) => step(env, |env| round(env, actions)),
+            Place::Thread { .. } => Err(ROUNDS_ARE_LOCK_STEP),
+        }
     }
 
     /// The next percept batch of each named entity (all entities when `entities` is empty),
     /// without advancing time.
     pub fn perceive(&self, entities: &[String]) -> Result<Batches, EnvError> {
-        self.ask(|tx| Request::Perceive(entities.to_vec(), tx))
+        self.call(
+            |env| perceive(env, entities.to_vec()),
+            |tx| Request::Perceive(entities.to_vec(), tx),
+        )
     }
 
     /// Real-time: queues an action for the next tick; the receiver yields its result then.
@@ -143,9 +183,12 @@ impl EnvHandle {
         action: Term,
     ) -> Result<Receiver<Result<ActionResult, EnvError>>, EnvError> {
         let (tx, rx) = bounded(1);
-        self.tx
-            .send(Request::Act(entity.to_string(), action, tx))
-            .map_err(|_| EnvError::Stopped)?;
+        match &self.place {
+            Place::Here(_) => drop(tx.send(Err(ACTS_ARE_REAL_TIME))),
+            Place::Thread { tx: requests, .. } => requests
+                .send(Request::Act(entity.to_string(), action, tx))
+                .map_err(|_| EnvError::Stopped)?,
+        }
         Ok(rx)
     }
 
@@ -158,34 +201,42 @@ impl EnvHandle {
 
     /// Ticks done, whether the task is complete, and the statistics.
     pub fn status(&self) -> Result<EnvStatus, EnvError> {
-        self.ask(Request::Status)
+        self.call(|env| status(env), Request::Status)
     }
 
     /// The fixed layout a viewer draws ([`Environment::layout`]).
     pub fn layout(&self) -> Result<Option<serde_json::Value>, EnvError> {
-        self.ask(|tx| Request::View(true, tx))
+        self.call(|env| view(env, true), |tx| Request::View(true, tx))
     }
 
     /// The moving parts a viewer draws now ([`Environment::scene`]).
     pub fn scene(&self) -> Result<Option<serde_json::Value>, EnvError> {
-        self.ask(|tx| Request::View(false, tx))
+        self.call(|env| view(env, false), |tx| Request::View(false, tx))
     }
 
     /// Hands a person's request for `entity` to the environment between two ticks
     /// ([`Environment::input`]); the inner `Err` says why the environment refused it.
     pub fn input(&self, entity: &str, request: &Term) -> Result<Result<(), String>, EnvError> {
-        self.ask(|tx| Request::Input(entity.to_string(), request.clone(), tx))
+        self.call(
+            |env| env.input(entity, request),
+            |tx| Request::Input(entity.to_string(), request.clone(), tx),
+        )
     }
 
-    /// Stops the thread and waits for it.
+    /// Stops the environment (and waits for its thread).
     pub fn stop(mut self) {
         self.shutdown();
     }
 
     fn shutdown(&mut self) {
-        let _ = self.tx.send(Request::Stop);
-        if let Some(j) = self.join.take() {
-            let _ = j.join();
+        match &mut self.place {
+            Place::Here(env) => drop(env.get_mut().map(Option::take)),
+            Place::Thread { tx, join } => {
+                let _ = tx.send(Request::Stop);
+                if let Some(j) = join.take() {
+                    let _ = j.join();
+                }
+            }
         }
     }
 }
@@ -193,6 +244,42 @@ impl EnvHandle {
 impl Drop for EnvHandle {
     fn drop(&mut self) {
         self.shutdown();
+    }
+}
+
+/// Runs `f` on a lock-step environment; a panic stops the environment for good, as the
+/// end of its thread would.
+fn step<T>(
+    env: &Mutex<Option<Box<dyn Environment>>>,
+    f: impl FnOnce(&mut dyn Environment) -> T,
+) -> Result<T, EnvError> {
+    let mut slot = env.lock().unwrap_or_else(|p| p.into_inner());
+    let live = slot.as_mut().ok_or(EnvError::Stopped)?;
+    match catch_unwind(AssertUnwindSafe(|| f(live.as_mut()))) {
+        Ok(v) => Ok(v),
+        Err(_) => {
+            *slot = None;
+            Err(EnvError::Stopped)
+        }
+    }
+}
+
+/// One lock-step round: `actions` in order, one tick, every entity's percepts.
+fn round(env: &mut dyn Environment, actions: Vec<(String, Term)>) -> RoundReply {
+    let results = actions
+        .into_iter()
+        .map(|(e, a)| {
+            let r = env.perform(&e, &a);
+            (e, r)
+        })
+        .collect();
+    env.tick();
+    let percepts = perceive(env, Vec::new());
+    RoundReply {
+        tick: env.ticks(),
+        results,
+        percepts,
+        finished: env.is_finished(),
     }
 }
 
@@ -234,42 +321,6 @@ fn view(env: &mut dyn Environment, layout: bool) -> Option<serde_json::Value> {
     }
 }
 
-fn run_lock_step(mut env: Box<dyn Environment>, rx: Receiver<Request>) {
-    while let Ok(req) = rx.recv() {
-        match req {
-            Request::Info(tx) => drop(tx.send(info(env.as_ref()))),
-            Request::Round(actions, tx) => {
-                let results = actions
-                    .into_iter()
-                    .map(|(e, a)| {
-                        let r = env.perform(&e, &a);
-                        (e, r)
-                    })
-                    .collect();
-                env.tick();
-                let percepts = perceive(env.as_mut(), Vec::new());
-                let reply = RoundReply {
-                    tick: env.ticks(),
-                    results,
-                    percepts,
-                    finished: env.is_finished(),
-                };
-                let _ = tx.send(Ok(reply));
-            }
-            Request::Perceive(names, tx) => drop(tx.send(perceive(env.as_mut(), names))),
-            Request::Act(_, _, tx) => {
-                let _ = tx.send(Err(EnvError::WrongMode(
-                    "single actions are for real-time mode; use round() in lock-step mode",
-                )));
-            }
-            Request::Status(tx) => drop(tx.send(status(env.as_ref()))),
-            Request::View(layout, tx) => drop(tx.send(view(env.as_mut(), layout))),
-            Request::Input(e, t, tx) => drop(tx.send(env.input(&e, &t))),
-            Request::Stop => break,
-        }
-    }
-}
-
 fn run_real_time(mut env: Box<dyn Environment>, rx: Receiver<Request>, tps: f64) {
     let period = if tps > 0.0 && tps.is_finite() {
         Duration::from_secs_f64(1.0 / tps)
@@ -297,11 +348,6 @@ fn run_real_time(mut env: Box<dyn Environment>, rx: Receiver<Request>, tps: f64)
         }
         match rx.recv_deadline(next) {
             Ok(Request::Info(tx)) => drop(tx.send(info(env.as_ref()))),
-            Ok(Request::Round(_, tx)) => {
-                let _ = tx.send(Err(EnvError::WrongMode(
-                    "rounds are for lock-step mode; use submit()/act() in real-time mode",
-                )));
-            }
             Ok(Request::Perceive(names, tx)) => drop(tx.send(perceive(env.as_mut(), names))),
             Ok(Request::Act(e, a, tx)) => queue.push((e, a, tx)),
             Ok(Request::Status(tx)) => drop(tx.send(status(env.as_ref()))),
