@@ -2,7 +2,7 @@
 //!
 //! Robots (entities `Bot1`, `Bot2`, ... in spawn order) walk between zones, pick up coloured
 //! blocks in rooms and deliver them to the drop zone in the order of the map's colour sequence.
-//! [`Bw4t`] implements [`crate::env::Environment`]; run it on its own thread with
+//! [`Bw4t`] implements [`crate::env::Environment`]; run it in lock-step or real time with
 //! [`crate::env::thread::EnvHandle`]. Maps are TOML files ([`map`]), built in by name
 //! ([`map::builtin`]) or imported from BW4T XML ([`xml::import`]). Behaviour follows the BW4T 3
 //! agent-environment interface; users read docs/bw4t.md and docs/environments.md.

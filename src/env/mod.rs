@@ -6,7 +6,7 @@
 //! [`Environment::percepts`]. Each percept predicate has a declared [`PerceptType`]; the agent
 //! runtime keeps a typed percept base from the batches (`agent::percepts`).
 //! [`filter::PerceptFilter`] turns the full current truth into such batches.
-//! [`thread::EnvHandle`] runs any environment on its own thread (lock-step or real-time), and
+//! [`thread::EnvHandle`] runs any environment (lock-step on the caller's thread, real-time on its own), and
 //! [`FromInitParams`] creates one from init parameters (key -> term).
 
 pub mod filter;
