@@ -324,7 +324,7 @@ impl Code {
                     true
                 }
                 Cell::Ref(a) => {
-                    let t = self.build(store, code, slots);
+                    let t = Cell::Ptr(self.build_block(store, off, slots));
                     if store.occurs_check && store.occurs(a, t) {
                         return false;
                     }
