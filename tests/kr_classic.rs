@@ -168,6 +168,45 @@ fn goal_view_sees_goal_facts_and_knowledge() {
     assert_eq!(a.len(), 2);
 }
 
+/// A clause's first body goal is called without a goal term or frame of its own: the goal is
+/// built only where it must be kept (a choicepoint over several clauses, a scan of goal
+/// facts), and answers, their order and errors stay those of an ordinary call.
+#[test]
+fn first_body_goals_answer_in_order_and_raise_errors() {
+    let kn = load(
+        "p(X, Y) :- q(X, Y). q(1, a). q(2, b). q(3, c). \
+         d(X) :- done(X). done(k). \
+         r(X) :- s(X). s(X) :- X > 0.",
+    );
+    let mut e = NativeEngine::new(0);
+    let v = View::beliefs(&kn, &[]);
+    let shown = |a: Vec<goal::term::Subst>| -> Vec<String> {
+        a.iter()
+            .map(|s| {
+                let mut b: Vec<String> = s.iter().map(|(k, t)| format!("{k}={t}")).collect();
+                b.sort();
+                b.join(",")
+            })
+            .collect()
+    };
+    let a = e.query(&v, &read("p(X, Y)")).unwrap();
+    assert_eq!(shown(a), ["X=1,Y=a", "X=2,Y=b", "X=3,Y=c"]);
+    let a = e.query(&v, &read("p(2, Y)")).unwrap();
+    assert_eq!(shown(a), ["Y=b"]);
+    let a = e.query(&v, &read("p(X, c)")).unwrap();
+    assert_eq!(shown(a), ["X=3"]);
+    // Goal facts join the clauses of their predicate, after them.
+    let goal_facts = vec![read("done(g)")];
+    let a = e
+        .query(&View::goal(&kn, &goal_facts), &read("d(X)"))
+        .unwrap();
+    assert_eq!(shown(a), ["X=k", "X=g"]);
+    let a = e
+        .query(&v, &read("catch(r(_), error(E, _), true)"))
+        .unwrap();
+    assert_eq!(shown(a), ["E=instantiation_error"]);
+}
+
 fn limited(program: &str, query: &str, limits: Limits) -> Result<usize, KrError> {
     let kn = load(program);
     let mut e = NativeEngine::new(0).with_limits(limits);

@@ -60,6 +60,8 @@ impl Solver<'_, '_> {
     /// Hands error `e` to the innermost active `catch/3` whose catcher unifies with it:
     /// `Ok(true)` with the recovery goal scheduled, or `Err(e)` when none catches it.
     pub(crate) fn recover(&mut self, e: KrError) -> KrResult<bool> {
+        // A pending first body goal belongs to the computation the error abandons.
+        self.direct = None;
         let ball = match &e {
             KrError::Iso(t) | KrError::Uncaught(t) => t.clone(),
             _ => return Err(e),

@@ -225,11 +225,29 @@ impl Code {
     /// returns the heap address of the copy.
     #[inline]
     fn build_block(&self, store: &mut Store, off: u32, slots: &mut [Cell]) -> u32 {
-        let end = self.ends[off as usize] as usize;
+        self.copy_cells(store, off, self.ends[off as usize], slots)
+    }
+
+    /// Builds the arguments of the compiled goal `root` (a structure or an atom) on the heap,
+    /// laid out as the goal's block would be without its header cell (so fresh variables are
+    /// made in the same order as when the whole goal is built); returns the address of the
+    /// first argument.
+    #[inline]
+    pub fn build_args(&self, store: &mut Store, root: Cell, slots: &mut [Cell]) -> u32 {
+        match root {
+            Cell::Ptr(off) => self.copy_cells(store, off + 1, self.ends[off as usize], slots),
+            _ => store.heap.len() as u32,
+        }
+    }
+
+    /// Copies cells `from..end` of this code to the top of the heap, then rewrites the cells
+    /// that mean something else on the heap (slots, offsets, string indices); returns the heap
+    /// address of the first copied cell.
+    #[inline]
+    fn copy_cells(&self, store: &mut Store, from: u32, end: u32, slots: &mut [Cell]) -> u32 {
         let base = store.heap.len() as u32;
         let Store { heap, strs, .. } = store;
-        // Copied as it is, then the cells that mean something else on the heap are rewritten.
-        heap.extend_from_slice(&self.cells[off as usize..end]);
+        heap.extend_from_slice(&self.cells[from as usize..end as usize]);
         for (a, c) in (base..).zip(&mut heap[base as usize..]) {
             match *c {
                 Cell::Ref(k) => {
@@ -243,7 +261,7 @@ impl Code {
                         None => Cell::Ref(a),
                     }
                 }
-                Cell::Ptr(o) => *c = Cell::Ptr(o - off + base),
+                Cell::Ptr(o) => *c = Cell::Ptr(o - from + base),
                 Cell::Str(j) => {
                     strs.push(self.strs[j as usize].clone());
                     *c = Cell::Str(strs.len() as u32 - 1);
@@ -306,7 +324,7 @@ impl Code {
                     true
                 }
                 Cell::Ref(a) => {
-                    let t = self.build(store, code, slots);
+                    let t = Cell::Ptr(self.build_block(store, off, slots));
                     if store.occurs_check && store.occurs(a, t) {
                         return false;
                     }
