@@ -156,7 +156,9 @@ impl Core {
         } else {
             self.ms.attention.current_mut()
         };
-        base.add(Goal::new(g.clone()));
+        // Found not believed just now: later goal checks need not look at it unless an update
+        // concerns its facts.
+        base.add_unbelieved(Goal::new(g.clone()));
         let attention = if top_level {
             0
         } else {
