@@ -27,7 +27,7 @@ impl Core {
             Act::Insert(t) => {
                 let u = ground(s, t, "insert")?;
                 let mut ev = Vec::new();
-                self.ms.update(&u, true, &mut ev)?;
+                self.ms.update_ground(&u, true, &mut ev)?;
                 self.changes(ev);
                 self.done_with(|| Term::compound("insert", vec![u.clone()]));
                 self.check_goals()?;
@@ -251,7 +251,7 @@ impl Core {
             });
         }
         let mut ev = Vec::new();
-        self.ms.update(&post, true, &mut ev)?;
+        self.ms.update_ground(&post, true, &mut ev)?;
         self.done(&inst)?;
         self.changes(ev);
         self.check_goals()?;

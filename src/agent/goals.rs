@@ -296,5 +296,18 @@ mod tests {
         assert!(first(&b, 3).is_empty());
         assert!(b.add(goal("(fib(1), fib(4))")));
         assert_eq!(first(&b, 1), ["fib(2),fib(1)", "fib(1),fib(4)"]);
+        // Several goals at once, down to the last: the indexes follow.
+        assert!(b.add(goal("round(3)")));
+        let gone = b.remove_at(&[1, 3, 6]);
+        assert_eq!(
+            names(gone.into_iter()),
+            ["fib(2),fib(1)", "done", "round(3)"]
+        );
+        assert_eq!(by(&b), ["fib(0)", "fib(5)", "fib(1),fib(4)"]);
+        assert_eq!(first(&b, 1), ["fib(1),fib(4)"]);
+        assert_eq!(first(&b, 5), ["fib(5)"]);
+        assert_eq!(b.positions(Sym::intern("round"), 1), [0]);
+        assert_eq!(b.positions_with_key(fib, 1, Key::Int(4)), [3]);
+        assert!(b.positions(Sym::intern("done"), 0).is_empty());
     }
 }

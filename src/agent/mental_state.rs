@@ -487,6 +487,16 @@ impl MentalState {
         if !u.is_ground() {
             return Err(Fault::new(format!("update {u} is not ground")));
         }
+        self.update_ground(u, allow_negative, events)
+    }
+
+    /// [`MentalState::update`] of an update the caller found ground.
+    pub fn update_ground(
+        &mut self,
+        u: &Term,
+        allow_negative: bool,
+        events: &mut Vec<Event>,
+    ) -> Result<(), Fault> {
         let mut add: SmallVec<[&Term; 4]> = SmallVec::new();
         let mut del: SmallVec<[&Term; 4]> = SmallVec::new();
         for lit in u.conjuncts() {
@@ -522,21 +532,24 @@ impl MentalState {
         let lits = u.conjuncts();
         // The stored messages that the open literals name (allocated only when there are any).
         let mut open = Vec::new();
+        // Which literals are ground (each walked once).
+        let mut ground: SmallVec<[bool; 4]> = SmallVec::with_capacity(lits.len());
         for lit in &lits {
             if lit.is_functor(wk::NOT, 1) {
                 return Err(Fault::new(format!(
                     "not(...) is not allowed in delete: {u}"
                 )));
             }
-            if !lit.is_ground() {
+            ground.push(lit.is_ground());
+            if !ground[ground.len() - 1] {
                 match is_mail_fact(lit).then(|| self.mailbox.variant_of(lit)) {
                     Some(Some(stored)) => open.push(stored),
                     _ => return Err(Fault::new(format!("delete({u}) is not ground"))),
                 }
             }
         }
-        for lit in lits {
-            if lit.is_ground() && !lit.is_functor(wk::TRUE, 0) {
+        for (lit, ground) in lits.into_iter().zip(ground) {
+            if ground && !lit.is_functor(wk::TRUE, 0) {
                 self.remove_fact(lit, events);
             }
         }
@@ -590,7 +603,9 @@ impl MentalState {
         };
         mark.beliefs += 1;
         if let Some((name, arity)) = inserted.and_then(|f| f.functor()) {
-            let first = inserted.and_then(|f| f.args().first()).and_then(Key::of_term);
+            let first = inserted
+                .and_then(|f| f.args().first())
+                .and_then(Key::of_term);
             let key = (name, arity as u32, first);
             if !mark.inserted.contains(&key) {
                 if mark.inserted.len() == MARKED {

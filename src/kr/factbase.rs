@@ -293,6 +293,13 @@ impl FactBase {
     /// Starts a scan over the facts that can match `name/arity` with the given argument keys,
     /// following the shortest applicable list.
     pub(crate) fn scan(&self, name: Sym, arity: u32, k1: Option<Key>, k2: Option<Key>) -> Scan {
+        // Most queries look at several bases, some of them empty: no key to hash then.
+        if self.ids.is_empty() {
+            return Scan {
+                links: 0,
+                next: NONE,
+            };
+        }
         let mut best: Option<(usize, List)> = None;
         if let Some(k) = k1 {
             match self.arg1.get(&(name, arity, k)) {
