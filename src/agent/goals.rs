@@ -44,6 +44,9 @@ pub struct GoalBase {
     /// True once a goal had a fact without a predicate (not in the indexes): goal checks then
     /// look at every goal.
     odd: bool,
+    /// The number of times a predicate new to `preds` was indexed: tells a goal check whether
+    /// the predicates it noted are still all of them.
+    new_predicates: u64,
 }
 
 impl GoalBase {
@@ -123,6 +126,10 @@ impl GoalBase {
             .get(&(name, arity, key))
             .map_or(&[][..], |v| &v[..])
     }
+    /// How many times a predicate no goal had before was indexed (never decreases).
+    pub(crate) fn new_predicates(&self) -> u64 {
+        self.new_predicates
+    }
     /// The predicates the goals' facts have (in no particular order).
     pub(crate) fn predicates(&self) -> impl Iterator<Item = (Sym, u32)> + '_ {
         self.preds.keys().copied()
@@ -131,7 +138,10 @@ impl GoalBase {
         for f in g.facts.iter() {
             self.odd |= f.functor().is_none();
             if let Some((name, arity)) = f.functor() {
-                let at = self.preds.entry((name, arity as u32)).or_default();
+                let at = self.preds.entry((name, arity as u32)).or_insert_with(|| {
+                    self.new_predicates += 1;
+                    Vec::new()
+                });
                 if at.last() != Some(&(pos as u32)) {
                     at.push(pos as u32);
                 }

@@ -53,6 +53,10 @@ struct GoalMark {
     batch: u64,
     moves: u64,
     inserted: SmallVec<[Inserted; 8]>,
+    /// The predicates of the goals' facts that are not plain (see
+    /// [`MentalState::plain_goal_predicate`]), as of `new_predicates` of the goal base.
+    impure: SmallVec<[(Sym, u32); 4]>,
+    new_predicates: u64,
 }
 
 /// The predicate and first-argument key of a fact inserted since the last goal check (`None`:
@@ -617,14 +621,67 @@ impl MentalState {
         }
     }
 
-    /// The goal mark of the current state, with no predicates inserted since.
-    fn goal_mark_now(&self) -> GoalMark {
-        GoalMark {
-            beliefs: self.beliefs.edits(),
-            percepts: self.percepts.facts().edits(),
-            batch: self.percepts.batch().edits(),
-            moves: self.attention.moves(),
-            inserted: SmallVec::new(),
+    /// The change counts a goal mark keeps: beliefs, percepts, percept batch, attention moves.
+    fn goal_stamps(&self) -> [u64; 4] {
+        [
+            self.beliefs.edits(),
+            self.percepts.facts().edits(),
+            self.percepts.batch().edits(),
+            self.attention.moves(),
+        ]
+    }
+
+    /// The predicates of the current goals that are not plain (see
+    /// [`MentalState::plain_goal_predicate`]).
+    fn impure_goal_predicates(&self) -> SmallVec<[(Sym, u32); 4]> {
+        self.attention
+            .current()
+            .predicates()
+            .filter(|&(name, arity)| !self.plain_goal_predicate(name, arity))
+            .collect()
+    }
+
+    /// Notes again which predicates of the goals are not plain, when the goal base has
+    /// predicates the goal mark did not note (a goal adopted with a new predicate).
+    fn renote_goal_predicates(&mut self) {
+        let new_predicates = self.attention.current().new_predicates();
+        if self
+            .goal_mark
+            .as_ref()
+            .is_none_or(|m| m.new_predicates == new_predicates)
+        {
+            return;
+        }
+        let impure = self.impure_goal_predicates();
+        if let Some(mark) = self.goal_mark.as_mut() {
+            mark.impure = impure;
+            mark.new_predicates = new_predicates;
+        }
+    }
+
+    /// Notes that every goal of the current attention set is not believed now: the goal mark
+    /// starts again from the current state (its predicates noted again after `full`, a check
+    /// of every goal).
+    fn set_goal_mark(&mut self, full: bool) {
+        let [beliefs, percepts, batch, moves] = self.goal_stamps();
+        let new_predicates = self.attention.current().new_predicates();
+        match self.goal_mark.as_mut() {
+            Some(mark) if !full => {
+                (mark.beliefs, mark.percepts, mark.batch, mark.moves) =
+                    (beliefs, percepts, batch, moves);
+                mark.inserted.clear();
+            }
+            _ => {
+                self.goal_mark = Some(GoalMark {
+                    beliefs,
+                    percepts,
+                    batch,
+                    moves,
+                    inserted: SmallVec::new(),
+                    impure: self.impure_goal_predicates(),
+                    new_predicates,
+                })
+            }
         }
     }
 
@@ -647,11 +704,7 @@ impl MentalState {
     fn goals_to_check(&self) -> Option<SmallVec<[u32; 16]>> {
         let mark = self.goal_mark.as_ref()?;
         let base = self.attention.current();
-        let now = self.goal_mark_now();
-        let same = mark.beliefs == now.beliefs
-            && mark.percepts == now.percepts
-            && mark.batch == now.batch
-            && mark.moves == now.moves;
+        let same = [mark.beliefs, mark.percepts, mark.batch, mark.moves] == self.goal_stamps();
         if !same || base.unchecked() || !self.native_roomy() {
             return None;
         }
@@ -662,10 +715,8 @@ impl MentalState {
                 None => base.positions(name, arity),
             });
         }
-        for (name, arity) in base.predicates() {
-            if !self.plain_goal_predicate(name, arity) {
-                at.extend_from_slice(base.positions(name, arity));
-            }
+        for &(name, arity) in &mark.impure {
+            at.extend_from_slice(base.positions(name, arity));
         }
         at.sort_unstable();
         at.dedup();
@@ -677,9 +728,12 @@ impl MentalState {
     /// (see [`MentalState::goals_to_check`]); the others are not believed, so the goals
     /// removed, their order and the events are those of a check of every goal.
     pub fn goal_check(&mut self, events: &mut Vec<Event>) -> Result<(), Fault> {
+        self.renote_goal_predicates();
         let mut achieved: SmallVec<[u32; 4]> = SmallVec::new();
         let goals = self.attention.current().goals();
-        match self.goals_to_check() {
+        let to_check = self.goals_to_check();
+        let full = to_check.is_none();
+        match to_check {
             Some(at) => {
                 for p in at {
                     if self.believes(&goals[p as usize].term)? {
@@ -698,7 +752,7 @@ impl MentalState {
         let base = self.attention.current_mut();
         base.checked();
         let removed = base.remove_at(&achieved);
-        self.goal_mark = Some(self.goal_mark_now());
+        self.set_goal_mark(full);
         let attention = self.attention.depth() - 1;
         for g in removed {
             events.push(Event::GoalAchieved {
