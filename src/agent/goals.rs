@@ -41,8 +41,8 @@ pub struct GoalBase {
     /// True when a goal was added without the caller having checked that it is not believed
     /// (see [`GoalBase::add_unbelieved`]): the next goal check looks at every goal.
     unchecked: bool,
-    /// True once a goal had a fact without a predicate (not in the indexes): goal checks then
-    /// look at every goal.
+    /// True once a goal had a fact without a predicate (not in the indexes) or with variables
+    /// (which the first-argument index cannot place): goal checks then look at every goal.
     odd: bool,
     /// The number of times a predicate new to `preds` was indexed: tells a goal check whether
     /// the predicates it noted are still all of them.
@@ -111,6 +111,11 @@ impl GoalBase {
     pub fn unchecked(&self) -> bool {
         self.unchecked || self.odd
     }
+    /// True when the indexes place every goal exactly: each fact is ground and has a
+    /// predicate.
+    pub fn exactly_indexed(&self) -> bool {
+        !self.odd
+    }
     /// Notes that every goal was found not believed.
     pub fn checked(&mut self) {
         self.unchecked = false;
@@ -136,7 +141,7 @@ impl GoalBase {
     }
     fn index(&mut self, pos: usize, g: &Goal) {
         for f in g.facts.iter() {
-            self.odd |= f.functor().is_none();
+            self.odd |= f.functor().is_none() || !f.is_ground();
             if let Some((name, arity)) = f.functor() {
                 let at = self.preds.entry((name, arity as u32)).or_insert_with(|| {
                     self.new_predicates += 1;

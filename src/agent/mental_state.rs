@@ -415,7 +415,9 @@ impl MentalState {
         let gq = GoalQuery::new(&self.knowledge, q);
         let first = first_conjunct(q);
         let at = match first.functor() {
-            Some((name, arity)) if !self.knowledge.resolves(name, arity) => {
+            Some((name, arity))
+                if base.exactly_indexed() && !self.knowledge.resolves(name, arity) =>
+            {
                 match first.args().first().and_then(Key::of_term) {
                     Some(key) => base.positions_with_key(name, arity as u32, key),
                     None => base.positions(name, arity as u32),
