@@ -384,6 +384,12 @@ mod tests {
             .collect();
         assert_eq!(all, ["on(a,b)", "on(b,c)"]);
         assert!(!fb.insert(Term::Int(3)));
+        // Three inserts and one delete changed the base; the refused ones did not.
+        assert_eq!(fb.edits(), 4);
+        fb.clear();
+        assert!(fb.is_empty() && fb.edits() == 5);
+        assert!(fb.insert(on("a", "b")) && fb.delete(&on("a", "b")));
+        assert_eq!(fb.edits(), 7, "emptying the base keeps the count");
     }
 
     #[test]
