@@ -970,3 +970,40 @@ fn if_with_a_finite_condition_is_not_cut_and_forall_takes_every_answer() {
     );
     assert_eq!(out.printed.len(), 1);
 }
+
+#[test]
+fn goal_checks_after_updates_see_knowledge_percepts_and_conjunctions() {
+    // `done` is achieved through knowledge by a fact of another predicate; `on(a,b), on(b,c)`
+    // by its first fact inserted after its second; `percept(go)` by a percept, and dropped by
+    // the goal check after an unrelated update. The others stay, in adoption order.
+    let mut a = agent(
+        "init module { knowledge { done :- count(2). }
+                       beliefs { count(0). }
+                       goals { keep(1). done. (on(a,b), on(b,c)). percept(go). keep(2). } }
+         main module { program {
+            if bel(count(N), N < 2, M is N + 1) then delete(count(N)) + insert(count(M)).
+            if bel(count(2), not(on(b,c))) then insert(on(b,c)).
+            if bel(count(2), not(on(a,b))) then insert(on(a,b)).
+            if bel(percept(go)) then insert(seen).
+         } }",
+    );
+    let all = [
+        "keep(1)",
+        "done",
+        "on(a,b),on(b,c)",
+        "percept(go)",
+        "keep(2)",
+    ];
+    run(&mut a, 1);
+    assert_eq!(goals(&a), all);
+    run(&mut a, 1);
+    let rest = ["keep(1)", "on(a,b),on(b,c)", "percept(go)", "keep(2)"];
+    assert_eq!(goals(&a), rest);
+    run(&mut a, 1);
+    assert_eq!(goals(&a), rest);
+    run(&mut a, 1);
+    assert_eq!(goals(&a), ["keep(1)", "percept(go)", "keep(2)"]);
+    step(&mut a, &["go"], &[]);
+    assert_eq!(beliefs(&a), ["count(2)", "on(a,b)", "on(b,c)", "seen"]);
+    assert_eq!(goals(&a), ["keep(1)", "keep(2)"]);
+}

@@ -27,7 +27,7 @@ impl Core {
             Act::Insert(t) => {
                 let u = ground(s, t, "insert")?;
                 let mut ev = Vec::new();
-                self.ms.update(&u, true, &mut ev)?;
+                self.ms.update_ground(&u, true, &mut ev)?;
                 self.changes(ev);
                 self.done_with(|| Term::compound("insert", vec![u.clone()]));
                 self.check_goals()?;
@@ -156,7 +156,9 @@ impl Core {
         } else {
             self.ms.attention.current_mut()
         };
-        base.add(Goal::new(g.clone()));
+        // Found not believed just now: later goal checks need not look at it unless an update
+        // concerns its facts.
+        base.add_unbelieved(Goal::new(g.clone()));
         let attention = if top_level {
             0
         } else {
@@ -249,7 +251,7 @@ impl Core {
             });
         }
         let mut ev = Vec::new();
-        self.ms.update(&post, true, &mut ev)?;
+        self.ms.update_ground(&post, true, &mut ev)?;
         self.done(&inst)?;
         self.changes(ev);
         self.check_goals()?;

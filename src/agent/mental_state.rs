@@ -12,6 +12,7 @@ use super::mailbox::{is_mail_fact, Mailbox};
 use super::models::Models;
 use super::percepts::PerceptBase;
 use super::trace::Event;
+use crate::kr::native::code::Key;
 use crate::term::{well_known as wk, Subst, Sym, Term};
 use smallvec::{smallvec, SmallVec};
 use std::cell::RefCell;
@@ -36,7 +37,35 @@ pub struct MentalState {
     pub record: bool,
     /// Mental models of the other agents (kept when the program queries them).
     pub models: Models,
+    /// The state the last goal check saw, kept up to date by this agent's own belief updates
+    /// (with the predicates they inserted) while nothing else changed: see
+    /// [`MentalState::goal_check`]. `None`: the next check looks at every goal.
+    goal_mark: Option<GoalMark>,
 }
+
+/// What a goal check saw: the change counts of the bases goal facts can be found in (beliefs,
+/// percepts and this cycle's percept batch), the attention stack's moves, and the predicates
+/// inserted into the beliefs since (by this agent's updates).
+#[derive(Clone, Debug, PartialEq, Eq)]
+struct GoalMark {
+    beliefs: u64,
+    percepts: u64,
+    batch: u64,
+    moves: u64,
+    inserted: SmallVec<[Inserted; 8]>,
+    /// The predicates of the goals' facts that are not plain (see
+    /// [`MentalState::plain_goal_predicate`]), as of `new_predicates` of the goal base.
+    impure: SmallVec<[(Sym, u32); 4]>,
+    new_predicates: u64,
+}
+
+/// The predicate and first-argument key of a fact inserted since the last goal check (`None`:
+/// no first argument, or one without a key): only goals with a fact of both can be achieved by it.
+type Inserted = (Sym, u32, Option<Key>);
+
+/// The most predicates a goal mark records; more updates between two goal checks make the
+/// next check look at every goal.
+const MARKED: usize = 16;
 
 /// The effect of an update on the belief base and mailbox.
 #[derive(Debug, Default)]
@@ -72,6 +101,7 @@ impl MentalState {
                 Term::Atom(a) => a.name().to_string(),
                 other => other.to_string(),
             }),
+            goal_mark: None,
         }
     }
 
@@ -366,17 +396,44 @@ impl MentalState {
 
     /// True when one goal's facts plus knowledge entail `q`.
     pub fn goal_holds(&self, g: &Goal, q: &Term) -> Result<bool, Fault> {
-        if let Some(answers) = GoalQuery::new(&self.knowledge, q).facts_only(g) {
+        self.goal_holds_prepared(g, &GoalQuery::new(&self.knowledge, q))
+    }
+
+    /// [`MentalState::goal_holds`] for a query prepared once for many goals.
+    fn goal_holds_prepared(&self, g: &Goal, gq: &GoalQuery<'_>) -> Result<bool, Fault> {
+        if let Some(answers) = gq.facts_only(g) {
             return Ok(!answers.is_empty());
         }
         let view = View::goal(&self.knowledge, &g.facts);
-        self.run(|e| e.holds(&view, q), q)
+        self.run(|e| e.holds(&view, gq.query), gq.query)
     }
 
-    /// True when some goal of `base` entails `q`.
+    /// True when some goal of `base` entails `q`. When the first conjunct of `q` is of a
+    /// predicate only facts answer, only the goals with a fact of that predicate (and first
+    /// argument) are asked: no other goal has an answer.
     pub fn is_goal_in(&self, base: &GoalBase, q: &Term) -> Result<bool, Fault> {
-        for g in base.goals() {
-            if self.goal_holds(g, q)? {
+        let gq = GoalQuery::new(&self.knowledge, q);
+        let first = first_conjunct(q);
+        let at = match first.functor() {
+            Some((name, arity))
+                if base.exactly_indexed() && !self.knowledge.resolves(name, arity) =>
+            {
+                match first.args().first().and_then(Key::of_term) {
+                    Some(key) => base.positions_with_key(name, arity as u32, key),
+                    None => base.positions(name, arity as u32),
+                }
+            }
+            _ => {
+                for g in base.goals() {
+                    if self.goal_holds_prepared(g, &gq)? {
+                        return Ok(true);
+                    }
+                }
+                return Ok(false);
+            }
+        };
+        for &p in at {
+            if self.goal_holds_prepared(&base.goals()[p as usize], &gq)? {
                 return Ok(true);
             }
         }
@@ -436,6 +493,16 @@ impl MentalState {
         if !u.is_ground() {
             return Err(Fault::new(format!("update {u} is not ground")));
         }
+        self.update_ground(u, allow_negative, events)
+    }
+
+    /// [`MentalState::update`] of an update the caller found ground.
+    pub fn update_ground(
+        &mut self,
+        u: &Term,
+        allow_negative: bool,
+        events: &mut Vec<Event>,
+    ) -> Result<(), Fault> {
         let mut add: SmallVec<[&Term; 4]> = SmallVec::new();
         let mut del: SmallVec<[&Term; 4]> = SmallVec::new();
         for lit in u.conjuncts() {
@@ -471,21 +538,24 @@ impl MentalState {
         let lits = u.conjuncts();
         // The stored messages that the open literals name (allocated only when there are any).
         let mut open = Vec::new();
+        // Which literals are ground (each walked once).
+        let mut ground: SmallVec<[bool; 4]> = SmallVec::with_capacity(lits.len());
         for lit in &lits {
             if lit.is_functor(wk::NOT, 1) {
                 return Err(Fault::new(format!(
                     "not(...) is not allowed in delete: {u}"
                 )));
             }
-            if !lit.is_ground() {
+            ground.push(lit.is_ground());
+            if !ground[ground.len() - 1] {
                 match is_mail_fact(lit).then(|| self.mailbox.variant_of(lit)) {
                     Some(Some(stored)) => open.push(stored),
                     _ => return Err(Fault::new(format!("delete({u}) is not ground"))),
                 }
             }
         }
-        for lit in lits {
-            if lit.is_ground() && !lit.is_functor(wk::TRUE, 0) {
+        for (lit, ground) in lits.into_iter().zip(ground) {
+            if ground && !lit.is_functor(wk::TRUE, 0) {
                 self.remove_fact(lit, events);
             }
         }
@@ -503,6 +573,7 @@ impl MentalState {
                 });
             }
         } else if self.beliefs.insert(f.clone()) {
+            self.mark_belief_edit(Some(f));
             self.record_into(events, || Event::BeliefInserted {
                 fact: f.to_string(),
             });
@@ -517,6 +588,7 @@ impl MentalState {
                 });
             }
         } else if self.beliefs.delete(f) {
+            self.mark_belief_edit(None);
             self.record_into(events, || Event::BeliefDeleted {
                 fact: f.to_string(),
             });
@@ -529,25 +601,166 @@ impl MentalState {
         }
     }
 
-    /// Blind commitment: removes every goal of the current attention set that is believed.
-    pub fn goal_check(&mut self, events: &mut Vec<Event>) -> Result<(), Fault> {
-        let mut achieved = Vec::new();
-        for g in self.attention.current().goals() {
-            if self.believes(&g.term)? {
-                achieved.push(g.term.clone());
+    /// Keeps the goal mark in step with a belief update of this agent (`inserted`: the
+    /// fact inserted; a deletion achieves no goal of facts alone).
+    fn mark_belief_edit(&mut self, inserted: Option<&Term>) {
+        let Some(mark) = self.goal_mark.as_mut() else {
+            return;
+        };
+        mark.beliefs += 1;
+        if let Some((name, arity)) = inserted.and_then(|f| f.functor()) {
+            let first = inserted
+                .and_then(|f| f.args().first())
+                .and_then(Key::of_term);
+            let key = (name, arity as u32, first);
+            if !mark.inserted.contains(&key) {
+                if mark.inserted.len() == MARKED {
+                    self.goal_mark = None;
+                    return;
+                }
+                mark.inserted.push(key);
             }
         }
-        if !achieved.is_empty() {
-            self.attention
-                .current_mut()
-                .remove_where(|g| achieved.contains(&g.term));
-            let attention = self.attention.depth() - 1;
-            for g in achieved {
-                events.push(Event::GoalAchieved {
-                    goal: g.to_string(),
-                    attention,
-                });
+    }
+
+    /// The change counts a goal mark keeps: beliefs, percepts, percept batch, attention moves.
+    fn goal_stamps(&self) -> [u64; 4] {
+        [
+            self.beliefs.edits(),
+            self.percepts.facts().edits(),
+            self.percepts.batch().edits(),
+            self.attention.moves(),
+        ]
+    }
+
+    /// The predicates of the current goals that are not plain (see
+    /// [`MentalState::plain_goal_predicate`]).
+    fn impure_goal_predicates(&self) -> SmallVec<[(Sym, u32); 4]> {
+        self.attention
+            .current()
+            .predicates()
+            .filter(|&(name, arity)| !self.plain_goal_predicate(name, arity))
+            .collect()
+    }
+
+    /// Notes again which predicates of the goals are not plain, when the goal base has
+    /// predicates the goal mark did not note (a goal adopted with a new predicate).
+    fn renote_goal_predicates(&mut self) {
+        let new_predicates = self.attention.current().new_predicates();
+        if self
+            .goal_mark
+            .as_ref()
+            .is_none_or(|m| m.new_predicates == new_predicates)
+        {
+            return;
+        }
+        let impure = self.impure_goal_predicates();
+        if let Some(mark) = self.goal_mark.as_mut() {
+            mark.impure = impure;
+            mark.new_predicates = new_predicates;
+        }
+    }
+
+    /// Notes that every goal of the current attention set is not believed now: the goal mark
+    /// starts again from the current state (its predicates noted again after `full`, a check
+    /// of every goal).
+    fn set_goal_mark(&mut self, full: bool) {
+        let [beliefs, percepts, batch, moves] = self.goal_stamps();
+        let new_predicates = self.attention.current().new_predicates();
+        match self.goal_mark.as_mut() {
+            Some(mark) if !full => {
+                (mark.beliefs, mark.percepts, mark.batch, mark.moves) =
+                    (beliefs, percepts, batch, moves);
+                mark.inserted.clear();
             }
+            _ => {
+                self.goal_mark = Some(GoalMark {
+                    beliefs,
+                    percepts,
+                    batch,
+                    moves,
+                    inserted: SmallVec::new(),
+                    impure: self.impure_goal_predicates(),
+                    new_predicates,
+                })
+            }
+        }
+    }
+
+    /// True when a goal fact of predicate `name/arity` is found by a lookup in the beliefs and
+    /// percepts alone: knowledge does not resolve it (no rule, built-in or control construct)
+    /// and it is not a fact of the mailbox, the agent directory or `me/1`.
+    fn plain_goal_predicate(&self, name: Sym, arity: u32) -> bool {
+        !self.knowledge.resolves(name, arity as usize)
+            && !matches!(
+                (name, arity),
+                (wk::RECEIVED, 2) | (wk::SENT, 2) | (wk::AGENT, 1) | (wk::ME, 1)
+            )
+    }
+
+    /// The positions of the goals of the current attention set that the changes since the
+    /// last goal check can have achieved, ascending; `None`: every goal. A goal whose facts
+    /// are all of plain predicates (see [`MentalState::plain_goal_predicate`]) was not
+    /// believed at the last check (or when adopted, which also checks), and only an inserted
+    /// fact of one of its predicates can make it believed; any other goal is always looked at.
+    fn goals_to_check(&self) -> Option<SmallVec<[u32; 16]>> {
+        let mark = self.goal_mark.as_ref()?;
+        let base = self.attention.current();
+        let same = [mark.beliefs, mark.percepts, mark.batch, mark.moves] == self.goal_stamps();
+        if !same || base.unchecked() || !self.native_roomy() {
+            return None;
+        }
+        let mut at: SmallVec<[u32; 16]> = SmallVec::new();
+        for &(name, arity, first) in &mark.inserted {
+            at.extend_from_slice(match first {
+                Some(key) => base.positions_with_key(name, arity, key),
+                None => base.positions(name, arity),
+            });
+        }
+        for &(name, arity) in &mark.impure {
+            at.extend_from_slice(base.positions(name, arity));
+        }
+        at.sort_unstable();
+        at.dedup();
+        Some(at)
+    }
+
+    /// Blind commitment: removes every goal of the current attention set that is believed.
+    /// Only the goals that the changes since the last check can have achieved are queried
+    /// (see [`MentalState::goals_to_check`]); the others are not believed, so the goals
+    /// removed, their order and the events are those of a check of every goal.
+    pub fn goal_check(&mut self, events: &mut Vec<Event>) -> Result<(), Fault> {
+        self.renote_goal_predicates();
+        let mut achieved: SmallVec<[u32; 4]> = SmallVec::new();
+        let goals = self.attention.current().goals();
+        let to_check = self.goals_to_check();
+        let full = to_check.is_none();
+        match to_check {
+            Some(at) => {
+                for p in at {
+                    if self.believes(&goals[p as usize].term)? {
+                        achieved.push(p);
+                    }
+                }
+            }
+            None => {
+                for (p, g) in goals.iter().enumerate() {
+                    if self.believes(&g.term)? {
+                        achieved.push(p as u32);
+                    }
+                }
+            }
+        }
+        let base = self.attention.current_mut();
+        base.checked();
+        let removed = base.remove_at(&achieved);
+        self.set_goal_mark(full);
+        let attention = self.attention.depth() - 1;
+        for g in removed {
+            events.push(Event::GoalAchieved {
+                goal: g.term.to_string(),
+                attention,
+            });
         }
         Ok(())
     }
@@ -656,27 +869,33 @@ impl<'q> GoalQuery<'q> {
 
     /// [`GoalQuery::facts_only`] with the goal fact each answer matched (the query
     /// instantiated by the answer, when the query has no anonymous `_` of its own).
-    pub fn matching_facts<'g>(&self, g: &'g Goal) -> Option<Vec<(Subst, &'g Term)>> {
+    pub fn matching_facts<'g>(&self, g: &'g Goal) -> Option<SmallVec<[(Subst, &'g Term); 1]>> {
         let key = self.key?;
-        if !g.facts.iter().any(|f| f.functor() == Some(key)) {
-            return None;
-        }
-        let mut out: Vec<(Subst, &Term)> = Vec::new();
+        let mut of_key = false;
+        let mut out: SmallVec<[(Subst, &Term); 1]> = SmallVec::new();
         for f in g.facts.iter().filter(|f| f.functor() == Some(key)) {
+            of_key = true;
             let mut a = Subst::new();
             if match_fact(self.query, f, &mut a) && !out.iter().any(|(b, _)| *b == a) {
                 out.push((a, f));
             }
         }
-        Some(out)
+        of_key.then_some(out)
     }
 }
 
 /// Matches `pattern` against the ground `fact`, binding the pattern's variables (but `_`, which
 /// matches anything) in reading order, as the engine's answers do; false when they differ.
 fn match_fact(pattern: &Term, fact: &Term, s: &mut Subst) -> bool {
-    let mut work: SmallVec<[(&Term, &Term); 8]> = smallvec![(pattern, fact)];
-    while let Some((p, f)) = work.pop() {
+    // Argument lists still to match, the innermost last (leftmost argument first).
+    let mut work: SmallVec<[(&[Term], &[Term]); 8]> =
+        smallvec![(std::slice::from_ref(pattern), std::slice::from_ref(fact))];
+    while let Some((ps, fs)) = work.last_mut() {
+        let (Some((p, p_rest)), Some((f, f_rest))) = (ps.split_first(), fs.split_first()) else {
+            work.pop();
+            continue;
+        };
+        (*ps, *fs) = (p_rest, f_rest);
         match (p, f) {
             (Term::Var(v), _) if *v == wk::UNDERSCORE => {}
             (Term::Var(v), _) => match s.get(*v) {
@@ -688,8 +907,7 @@ fn match_fact(pattern: &Term, fact: &Term, s: &mut Subst) -> bool {
                 if p.name != f.name || p.args.len() != f.args.len() {
                     return false;
                 }
-                // Reversed, so that the leftmost argument is matched first.
-                work.extend(p.args.iter().zip(f.args.iter()).rev());
+                work.push((&p.args, &f.args));
             }
             _ => {
                 if p != f {

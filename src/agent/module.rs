@@ -75,11 +75,16 @@ fn is_linear(o: Order) -> bool {
     matches!(o, Order::Linear | Order::Random | Order::Adaptive)
 }
 
+/// True when each pass runs the rules in a newly drawn order.
+fn is_shuffled(o: Order) -> bool {
+    matches!(o, Order::Random | Order::RandomAll | Order::Adaptive)
+}
+
 impl Core {
     fn order(&mut self, prog: &Program, block: usize) -> Vec<u32> {
         let b = &prog.blocks[block];
         let mut o: Vec<u32> = (0..b.rules.len() as u32).collect();
-        if matches!(b.order, Order::Random | Order::RandomAll | Order::Adaptive) {
+        if is_shuffled(b.order) {
             o.shuffle(&mut self.rng);
         }
         o
@@ -255,9 +260,12 @@ impl Core {
                     let b = f.block;
                     f.next = 0;
                     f.pass_acted = false;
-                    let order = self.order(prog, b);
-                    if let Some(Frame::Module(f)) = stack.last_mut() {
-                        f.order = order;
+                    // A fixed order stays as it is; a random one is drawn again.
+                    if is_shuffled(prog.blocks[b].order) {
+                        let order = self.order(prog, b);
+                        if let Some(Frame::Module(f)) = stack.last_mut() {
+                            f.order = order;
+                        }
                     }
                     if main_ctx && idle {
                         return Ok(RunEnd::Suspended { acted: false });

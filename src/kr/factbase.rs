@@ -62,6 +62,9 @@ pub struct FactBase {
     preds: FxHashMap<(Sym, u32), List>,
     arg1: FxHashMap<(Sym, u32, Key), List>,
     arg2: FxHashMap<(Sym, u32, Key), List>,
+    /// Successful inserts and deletes so far (clearing counts as one): lets a reader tell
+    /// cheaply whether the base changed since it last looked.
+    edits: u64,
 }
 
 fn pred_of(t: &Term) -> Option<(Sym, u32)> {
@@ -106,6 +109,12 @@ impl FactBase {
     /// An empty base.
     pub fn new() -> FactBase {
         FactBase::default()
+    }
+
+    /// The number of changes made to the base so far (never decreases, also across
+    /// [`FactBase::clear`]): equal counts mean the same facts.
+    pub fn edits(&self) -> u64 {
+        self.edits
     }
 
     /// Number of facts.
@@ -154,6 +163,7 @@ impl FactBase {
         };
         let fact = slot.key().clone();
         slot.insert(id);
+        self.edits += 1;
         let (k1, k2) = (arg_key(&fact, 0), arg_key(&fact, 1));
         self.entries[id as usize].term = Some(fact);
         let entries = &mut self.entries;
@@ -188,6 +198,7 @@ impl FactBase {
         let Some(id) = self.ids.remove(fact) else {
             return false;
         };
+        self.edits += 1;
         let Some((name, arity)) = pred_of(fact) else {
             return false;
         };
@@ -227,7 +238,9 @@ impl FactBase {
     /// a large one frees them, so memory follows the current size.
     fn reset(&mut self) {
         if self.entries.capacity() > 256 {
-            self.clear();
+            let edits = self.edits;
+            *self = FactBase::default();
+            self.edits = edits;
             return;
         }
         self.entries.clear();
@@ -241,7 +254,9 @@ impl FactBase {
 
     /// Removes every fact and frees the memory.
     pub fn clear(&mut self) {
+        let edits = self.edits + 1;
         *self = FactBase::default();
+        self.edits = edits;
     }
 
     /// All facts in insertion order.
@@ -278,6 +293,13 @@ impl FactBase {
     /// Starts a scan over the facts that can match `name/arity` with the given argument keys,
     /// following the shortest applicable list.
     pub(crate) fn scan(&self, name: Sym, arity: u32, k1: Option<Key>, k2: Option<Key>) -> Scan {
+        // Most queries look at several bases, some of them empty: no key to hash then.
+        if self.ids.is_empty() {
+            return Scan {
+                links: 0,
+                next: NONE,
+            };
+        }
         let mut best: Option<(usize, List)> = None;
         if let Some(k) = k1 {
             match self.arg1.get(&(name, arity, k)) {
@@ -362,6 +384,12 @@ mod tests {
             .collect();
         assert_eq!(all, ["on(a,b)", "on(b,c)"]);
         assert!(!fb.insert(Term::Int(3)));
+        // Three inserts and one delete changed the base; the refused ones did not.
+        assert_eq!(fb.edits(), 4);
+        fb.clear();
+        assert!(fb.is_empty() && fb.edits() == 5);
+        assert!(fb.insert(on("a", "b")) && fb.delete(&on("a", "b")));
+        assert_eq!(fb.edits(), 7, "emptying the base keeps the count");
     }
 
     #[test]
