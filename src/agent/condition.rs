@@ -194,6 +194,7 @@ fn literal(
         about,
         op,
         query,
+        plan,
     } = lit
     else {
         return Ok(vec![Subst::new()]);
@@ -211,7 +212,13 @@ fn literal(
             }
         }
         (MentalOp::Bel, None) => {
-            let (found, stopped) = ms.bel_upto_in(query, theta, cap)?;
+            let planned = plan
+                .get(query, &ms.knowledge)
+                .and_then(|p| p.answers(ms, theta, cap));
+            let (found, stopped) = match planned {
+                Some(r) => r,
+                None => ms.bel_upto_in(query, theta, cap)?,
+            };
             *cut |= stopped;
             if found.len() == 1 {
                 raw.items = found;

@@ -395,7 +395,8 @@ impl MentalState {
             && !self.bases().iter().any(|b| b.has_predicate(name, arity))
     }
 
-    fn bases(&self) -> [&FactBase; 6] {
+    /// The fact bases a belief query reads, in the engine's order.
+    pub(crate) fn bases(&self) -> [&FactBase; 6] {
         [
             &self.beliefs,
             self.percepts.facts(),
