@@ -19,6 +19,8 @@ use std::sync::{Arc, OnceLock, Weak};
 const MAX_GOALS: usize = 16;
 /// Deepest arithmetic expression a plan evaluates (by recursion).
 const MAX_EXPR_DEPTH: usize = 8;
+/// Deepest pattern a plan instantiates for a lookup by hash (by recursion).
+const MAX_INSTANCE_DEPTH: usize = 32;
 
 /// An arithmetic comparison.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -37,9 +39,9 @@ enum Step {
     /// `true`.
     True,
     /// A fact pattern matched against the fact bases.
-    Fact(Term),
+    Fact(Pattern),
     /// `not(P)` / `\+ P` of a fact pattern: no fact matches.
-    Absent(Term),
+    Absent(Pattern),
     /// `Lhs is Expr` (the left side a variable or an integer).
     Is(Term, Term),
     /// An arithmetic comparison of two expressions.
@@ -48,6 +50,16 @@ enum Step {
     Unify(Term, Term),
     /// `A \= B` of variables, atoms and integers.
     Differ(Term, Term),
+}
+
+/// A fact pattern of a plan.
+#[derive(Debug)]
+struct Pattern {
+    term: Term,
+    /// Looked up by hash once its instance is ground: it has a compound argument (which the
+    /// fact index does not narrow) and is no mail fact (the mailbox may hold open messages,
+    /// which would unify with it).
+    by_hash: bool,
 }
 
 /// A belief query analysed for answering without the engine.
@@ -208,12 +220,16 @@ fn step(t: &Term, kn: &Knowledge) -> Option<Step> {
 }
 
 /// `t` as a fact pattern: a predicate only facts answer, and no float.
-fn pattern(t: &Term, kn: &Knowledge) -> Option<Term> {
+fn pattern(t: &Term, kn: &Knowledge) -> Option<Pattern> {
     let (name, arity) = t.functor()?;
     if kn.resolves(name, arity) || has_float(t) {
         return None;
     }
-    Some(t.clone())
+    let mail = matches!((name, arity), (wk::RECEIVED | wk::SENT, 2)) || name.name() == "session";
+    Some(Pattern {
+        term: t.clone(),
+        by_hash: !mail && t.args().iter().any(|a| matches!(a, Term::Compound(_))),
+    })
 }
 
 /// True for a side of `=`/`\=` a plan compares: a variable, an atom or an integer.
@@ -276,6 +292,7 @@ fn expr(t: &Term, depth: usize) -> Option<()> {
     }
 }
 
+/// True when `t` has a float anywhere.
 fn has_float(t: &Term) -> bool {
     let mut stack: SmallVec<[&Term; 16]> = smallvec![t];
     while let Some(t) = stack.pop() {
@@ -589,12 +606,25 @@ impl<'a> Run<'a> {
     /// Calls `then` once for each fact that matches the pattern `p` (with the pattern's free
     /// variables bound to the fact's parts), in the engine's order: base by base, each in
     /// insertion order.
-    fn each_match(&mut self, p: &'a Term, then: &mut dyn FnMut(&mut Run<'a>) -> Go) -> Go {
+    fn each_match(&mut self, pat: &'a Pattern, then: &mut dyn FnMut(&mut Run<'a>) -> Go) -> Go {
+        let p = &pat.term;
         let Some((name, arity)) = p.functor() else {
             return Err(Halt::Bail);
         };
-        let (k1, k2) = (self.arg_key(p, 0)?, self.arg_key(p, 1)?);
         let bases = self.bases;
+        // A ground instance is looked up by hash, as the engine looks up a ground fact.
+        if pat.by_hash {
+            if let Some(inst) = self.instance(p, 0)? {
+                for base in bases.iter().filter(|b| b.has_pred(name, arity)) {
+                    self.tick()?;
+                    if base.contains(&inst) {
+                        then(self)?;
+                    }
+                }
+                return Ok(());
+            }
+        }
+        let (k1, k2) = (self.arg_key(p, 0)?, self.arg_key(p, 1)?);
         for base in bases.iter().filter(|b| b.has_pred(name, arity)) {
             let mut scan = base.scan(name, arity as u32, k1, k2);
             while let Some(fact) = base.advance(&mut scan) {
@@ -610,6 +640,39 @@ impl<'a> Run<'a> {
             }
         }
         Ok(())
+    }
+
+    /// The pattern `p` under the values bound now, when that is ground (`Ok(None)`: it is
+    /// not); `Bail` on a float (whose equality is not its unifiability) or a deep term.
+    fn instance(&self, p: &Term, depth: usize) -> Result<Option<Term>, Halt> {
+        if depth > MAX_INSTANCE_DEPTH {
+            return Err(Halt::Bail);
+        }
+        Ok(Some(match p {
+            Term::Var(v) if *v == wk::UNDERSCORE => return Ok(None),
+            Term::Var(v) => match self.vals[self.slot(*v)] {
+                None => return Ok(None),
+                Some(Val::I(i)) => Term::Int(i),
+                Some(Val::T(t)) => {
+                    if has_float(t) {
+                        return Err(Halt::Bail);
+                    }
+                    t.clone()
+                }
+            },
+            Term::Compound(c) => {
+                let mut args = Vec::with_capacity(c.args.len());
+                for a in c.args.iter() {
+                    match self.instance(a, depth + 1)? {
+                        Some(t) => args.push(t),
+                        None => return Ok(None),
+                    }
+                }
+                Term::compound(c.name, args)
+            }
+            Term::Float(_) => return Err(Halt::Bail),
+            t => t.clone(),
+        }))
     }
 
     /// Matches the pattern `p` against `fact`, binding the pattern's free variables in
