@@ -150,7 +150,7 @@ fn planned_conditions_answer_as_the_engine_does() {
     for case in 0..6000 {
         let q = g.query();
         let theta = g.theta();
-        let cap = g.pick(&[1, 2, 3, usize::MAX]);
+        let cap = g.pick(&[0, 1, 2, 3, usize::MAX]);
         let expected = engine
             .query_upto_in(&view, &q, &theta, cap)
             .expect("theta is ground");
@@ -176,7 +176,6 @@ fn planned_conditions_answer_as_the_engine_does() {
             (Ok(_), None) => bailed += 1,
         }
     }
-    eprintln!("{planned} planned, {answered} answered ({answers} answers), {errors} errors, {bailed} bailed");
     // The generator reaches every outcome, most conditions are planned and answered.
     assert!(planned > 3000, "{planned} planned");
     assert!(answered > 2000, "{answered} answered");

@@ -7,8 +7,8 @@
 //! non-ground fact, more work than a small budget) hands the WHOLE query to the engine, which
 //! then answers or raises its usual error.
 
-use super::kr_bridge::{AgentEngine, FactBase, Knowledge};
-use super::lookup::{roomy, MAX_CANDIDATES, MAX_CELLS};
+use super::kr_bridge::{FactBase, Knowledge};
+use super::lookup::{size_if_ground, MAX_CANDIDATES, MAX_CELLS};
 use super::mental_state::MentalState;
 use crate::kr::native::code::Key;
 use crate::term::{well_known as wk, Subst, Sym, Term};
@@ -138,7 +138,7 @@ impl Plan {
         theta: &Subst,
         cap: usize,
     ) -> Option<(Vec<Subst>, bool)> {
-        if !native_roomy(ms) {
+        if !ms.native_roomy() {
             return None;
         }
         self.answers_in(&ms.bases(), theta, cap)
@@ -173,23 +173,13 @@ impl Plan {
             run.vals.push(val.map(Val::T));
         }
         match run.solve(0) {
-            Ok(()) => Some((run.out, false)),
-            Err(Halt::Cap) => Some((run.out, true)),
+            // As the engine reports it: stopped when `cap` answers were reached.
+            Ok(()) | Err(Halt::Cap) => {
+                let cut = run.out.len() >= cap;
+                Some((run.out, cut))
+            }
             Err(Halt::Bail) => None,
         }
-    }
-}
-
-/// True when the agent's engine is the native one with limits that leave room for a plan's
-/// bounded work (the scryer engine always answers itself).
-fn native_roomy(ms: &MentalState) -> bool {
-    match ms.engine.try_borrow() {
-        Ok(e) => match &*e {
-            AgentEngine::Native(n) => roomy(&n.limits),
-            #[allow(unreachable_patterns)]
-            _ => false,
-        },
-        Err(_) => false,
     }
 }
 
@@ -697,7 +687,7 @@ impl<'a> Run<'a> {
                             }
                         }
                         None => {
-                            self.cells += ground_size(f).ok_or(Halt::Bail)?;
+                            self.cells += size_if_ground(f).ok_or(Halt::Bail)?;
                             if self.cells > MAX_CELLS {
                                 return Err(Halt::Bail);
                             }
@@ -766,28 +756,4 @@ fn same(a: Val<'_>, b: Val<'_>) -> Option<bool> {
         }
     }
     Some(true)
-}
-
-/// The number of cells of a ground term (`None` when it has a variable or is too large).
-fn ground_size(t: &Term) -> Option<usize> {
-    match t {
-        Term::Var(_) => None,
-        Term::Compound(_) => {
-            let mut n = 0;
-            let mut stack: SmallVec<[&Term; 16]> = smallvec![t];
-            while let Some(t) = stack.pop() {
-                n += 1;
-                if n > MAX_CELLS {
-                    return None;
-                }
-                match t {
-                    Term::Var(_) => return None,
-                    Term::Compound(c) => stack.extend(c.args.iter()),
-                    _ => {}
-                }
-            }
-            Some(n)
-        }
-        _ => Some(1),
-    }
 }

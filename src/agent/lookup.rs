@@ -147,7 +147,7 @@ fn match_in(
 }
 
 /// The number of cells of a ground term (`None` when it has a variable or is too large).
-fn size_if_ground(t: &Term) -> Option<usize> {
+pub(super) fn size_if_ground(t: &Term) -> Option<usize> {
     match t {
         Term::Var(_) => None,
         Term::Compound(_) => {

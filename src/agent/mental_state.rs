@@ -293,7 +293,7 @@ impl MentalState {
 
     /// True when the engine is the native one and its limits leave room for a query answered
     /// without it (the scryer engine always answers itself).
-    fn native_roomy(&self) -> bool {
+    pub(crate) fn native_roomy(&self) -> bool {
         match self.engine.try_borrow() {
             Ok(e) => match &*e {
                 AgentEngine::Native(n) => lookup::roomy(&n.limits),
