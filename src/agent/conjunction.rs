@@ -757,3 +757,53 @@ fn same(a: Val<'_>, b: Val<'_>) -> Option<bool> {
     }
     Some(true)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn term(text: &str) -> Term {
+        let mut r = crate::syntax::prolog::Reader::new("test");
+        r.term(text, 0).expect("term").term
+    }
+
+    fn knowledge(text: &str) -> Arc<Knowledge> {
+        let mut r = crate::syntax::prolog::Reader::new("test");
+        let (clauses, _) = r.clauses(text, 0);
+        Knowledge::load(&clauses.into_iter().map(|c| c.term).collect::<Vec<_>>())
+            .expect("knowledge")
+    }
+
+    #[test]
+    fn open_mail_is_left_to_the_engine_even_for_a_ground_pattern() {
+        let mut mail = FactBase::new();
+        mail.insert(term("received(a, int(at(_, red)))"));
+        let kn = knowledge("k(1).");
+        for q in [
+            "received(a, int(at(b, red)))",
+            "received(S, int(at(X, red)))",
+        ] {
+            let plan = Plan::prepare(&term(q), &kn).expect("planned");
+            assert!(plan.answers_in(&[&mail], &Subst::new(), 9).is_none(), "{q}");
+        }
+        // Beliefs are ground: a ground pattern with a compound argument is looked up by hash.
+        let mut beliefs = FactBase::new();
+        beliefs.insert(term("seen(f(1), 2)"));
+        let plan = Plan::prepare(&term("seen(f(1), 2), not(seen(f(2), 2))"), &kn).expect("plan");
+        let (found, cut) = plan
+            .answers_in(&[&beliefs, &beliefs], &Subst::new(), 9)
+            .expect("answered");
+        assert_eq!((found.len(), cut), (2, false));
+    }
+
+    #[test]
+    fn a_plan_cell_serves_only_the_knowledge_it_was_made_for() {
+        let (k1, k2) = (knowledge("k(1)."), knowledge("p(X) :- k(X)."));
+        let q = term("p(X)");
+        let cell = PlanCell::default();
+        assert!(cell.get(&q, &k1).is_some());
+        // `p/1` is a rule under `k2`: the plan made for `k1` must not answer for it.
+        assert!(cell.get(&q, &k2).is_none());
+        assert!(PlanCell::default().get(&q, &k2).is_none());
+    }
+}
