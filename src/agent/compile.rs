@@ -455,6 +455,7 @@ impl<'s> Compiler<'s> {
                         about,
                         op: *op,
                         query: s.apply(&query.term),
+                        plan: Default::default(),
                     });
                 }
                 ast::LiteralKind::MacroUse { name, args } => {

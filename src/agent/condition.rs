@@ -125,11 +125,16 @@ pub fn evaluate(
     cap: usize,
 ) -> Result<Evaluation, Fault> {
     let mut cut = false;
-    let mut answers = vec![base.clone()];
+    // Before the first literal the answers are `base` alone (borrowed, not copied).
+    let mut answers: Vec<Subst> = Vec::new();
     for (i, lit) in lits.iter().enumerate() {
+        let current = match i {
+            0 => std::slice::from_ref(base),
+            _ => &answers[..],
+        };
         let mut next = AnswerSet::default();
-        let bound = bound_by_any(&answers);
-        'each: for theta in &answers {
+        let bound = bound_by_any(current);
+        'each: for theta in current {
             for a in literal(cx, lit, theta, cap, &mut cut)? {
                 if next.items.len() >= cap {
                     cut = true;
@@ -153,13 +158,20 @@ pub fn evaluate(
             }
         }
         if next.items.is_empty() {
+            let before = match i {
+                0 => vec![base.clone()],
+                _ => answers,
+            };
             return Ok(Evaluation {
                 answers: Vec::new(),
                 cut,
-                failed: Some((i, answers)),
+                failed: Some((i, before)),
             });
         }
         answers = next.items;
+    }
+    if lits.is_empty() {
+        answers.push(base.clone());
     }
     Ok(Evaluation {
         answers,
@@ -194,6 +206,7 @@ fn literal(
         about,
         op,
         query,
+        plan,
     } = lit
     else {
         return Ok(vec![Subst::new()]);
@@ -211,7 +224,13 @@ fn literal(
             }
         }
         (MentalOp::Bel, None) => {
-            let (found, stopped) = ms.bel_upto_in(query, theta, cap)?;
+            let planned = plan
+                .get(query, &ms.knowledge)
+                .and_then(|p| p.answers(ms, theta, cap));
+            let (found, stopped) = match planned {
+                Some(r) => r,
+                None => ms.bel_upto_in(query, theta, cap)?,
+            };
             *cut |= stopped;
             if found.len() == 1 {
                 raw.items = found;
@@ -231,7 +250,7 @@ fn literal(
             };
             // When only goal facts answer the query, the goals without a fact of its
             // predicate have no answer: look at the others alone (the base's index).
-            let goals: Vec<&Goal> = match (base, gq.fact_predicate()) {
+            let goals: SmallVec<[&Goal; 16]> = match (base, gq.fact_predicate()) {
                 (Some(b), Some((name, arity))) => match q.args().first().and_then(Key::of_term) {
                     Some(key) => b.with_first_arg(name, arity, key).collect(),
                     None => b.with_predicate(name, arity).collect(),
@@ -240,8 +259,7 @@ fn literal(
                 (None, _) => cx.only.into_iter().collect(),
             };
             // The instance of a query without `_` that matched a goal fact is that fact.
-            let mut plain = true;
-            q.for_each_var(&mut |v| plain &= v != crate::term::well_known::UNDERSCORE);
+            let plain = !has_anonymous(&q);
             for g in goals {
                 if *op != MentalOp::Goal && plain && gq.only_facts {
                     if let Some(found) = gq.matching_facts(g) {
@@ -290,6 +308,20 @@ fn literal(
         });
     }
     Ok(raw.items)
+}
+
+/// True when `t` has the anonymous variable `_`.
+fn has_anonymous(t: &Term) -> bool {
+    let mut stack: SmallVec<[&Term; 16]> = SmallVec::new();
+    stack.push(t);
+    while let Some(t) = stack.pop() {
+        match t {
+            Term::Var(v) if *v == crate::term::well_known::UNDERSCORE => return true,
+            Term::Compound(c) => stack.extend(c.args.iter()),
+            _ => {}
+        }
+    }
+    false
 }
 
 /// The positive `goal`/`a-goal` literals of a condition, instantiated (for focus=filter).

@@ -11,9 +11,9 @@ use smallvec::{smallvec, SmallVec};
 
 /// Most candidate facts a direct match looks at; past this the engine answers (its inference,
 /// answer and deadline checks then apply as always).
-const MAX_CANDIDATES: usize = 256;
+pub(super) const MAX_CANDIDATES: usize = 256;
 /// Most cells of bound values a direct match hands back (the engine's memory budget counts them).
-const MAX_CELLS: usize = 10_000;
+pub(super) const MAX_CELLS: usize = 10_000;
 
 /// True when the limits leave a direct match's work far inside every budget, so that the engine
 /// could not have stopped the same query with a resource error.
@@ -147,7 +147,7 @@ fn match_in(
 }
 
 /// The number of cells of a ground term (`None` when it has a variable or is too large).
-fn size_if_ground(t: &Term) -> Option<usize> {
+pub(super) fn size_if_ground(t: &Term) -> Option<usize> {
     match t {
         Term::Var(_) => None,
         Term::Compound(_) => {

@@ -323,7 +323,7 @@ impl MentalState {
 
     /// True when the engine is the native one and its limits leave room for a query answered
     /// without it (the scryer engine always answers itself).
-    fn native_roomy(&self) -> bool {
+    pub(crate) fn native_roomy(&self) -> bool {
         match self.engine.try_borrow() {
             Ok(e) => match &*e {
                 AgentEngine::Native(n) => lookup::roomy(&n.limits),
@@ -452,7 +452,8 @@ impl MentalState {
             && !self.bases().iter().any(|b| b.has_predicate(name, arity))
     }
 
-    fn bases(&self) -> [&FactBase; 6] {
+    /// The fact bases a belief query reads, in the engine's order.
+    pub(crate) fn bases(&self) -> [&FactBase; 6] {
         [
             &self.beliefs,
             self.percepts.facts(),

@@ -25,6 +25,7 @@
 pub mod action;
 mod compile;
 pub mod condition;
+pub mod conjunction;
 pub mod cycle;
 pub mod directory;
 pub mod error;

@@ -160,6 +160,7 @@ fn one(
             about: None,
             op,
             query: q.clone(),
+            plan: Default::default(),
         };
         let cx = super::condition::CondCtx { ms, only: None };
         return eval(&cx, &[own], &Subst::new());

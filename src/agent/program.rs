@@ -1,6 +1,7 @@
 //! A compiled agent program: modules, rule blocks, action specs and knowledge, built once from
 //! the AST and shared (via `Arc`) by every agent that runs it.
 
+use super::conjunction::PlanCell;
 use super::kr_bridge::Knowledge;
 use crate::diag::{line_col, Diagnostic};
 use crate::syntax::ast::{self, ExitCondition, Focus, MentalOp, Mood, Order};
@@ -64,6 +65,8 @@ pub enum Lit {
         about: Option<About>,
         op: MentalOp,
         query: Term,
+        /// `query` analysed for answering without the engine (made on first use).
+        plan: PlanCell,
     },
 }
 

@@ -32,6 +32,13 @@ impl Subst {
         Subst::default()
     }
 
+    /// An empty substitution with room for `n` bindings.
+    pub fn with_capacity(n: usize) -> Subst {
+        Subst {
+            bindings: Vec::with_capacity(n),
+        }
+    }
+
     /// The term bound to `var`, if any (not dereferenced further).
     pub fn get(&self, var: Sym) -> Option<&Term> {
         self.bindings

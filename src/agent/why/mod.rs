@@ -159,6 +159,7 @@ fn bel_literals(queries: &[Term]) -> Vec<Lit> {
             about: None,
             op: MentalOp::Bel,
             query: q.clone(),
+            plan: Default::default(),
         })
         .collect()
 }

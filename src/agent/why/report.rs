@@ -246,6 +246,7 @@ pub fn lit_text(l: &Lit) -> String {
         about,
         op,
         query,
+        ..
     } = l
     else {
         return "true".into();
