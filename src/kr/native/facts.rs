@@ -15,6 +15,15 @@ impl<'a> Solver<'a, '_> {
     /// Starts scanning fact source `stage` (a fact base, or the goal facts after the last base).
     pub(crate) fn start_scan(&self, stage: u32, _g: Cell, name: Sym, arity: u32, p: u32) -> Scan {
         if (stage as usize) < self.cx.bases.len() {
+            let base = self.cx.bases[stage as usize];
+            // Most queries look at several bases that lack the predicate: one hash says so,
+            // before the argument keys are read.
+            if !base.has_pred(name, arity as usize) {
+                return Scan {
+                    links: 0,
+                    next: u32::MAX,
+                };
+            }
             let (k1, k2) = if arity == 0 {
                 (None, None)
             } else {
@@ -27,7 +36,7 @@ impl<'a> Solver<'a, '_> {
                     },
                 )
             };
-            self.cx.bases[stage as usize].scan(name, arity, k1, k2)
+            base.scan(name, arity, k1, k2)
         } else {
             Scan { links: 0, next: 0 }
         }
