@@ -59,110 +59,68 @@ pub struct Knowledge {
     source: Vec<Term>,
 }
 
+/// The reason given for the database updates.
+const UPDATES: &str = "updates go through GOAL's insert/delete actions";
+/// The reason given for directives.
+const DIRECTIVES: &str = "directives are not supported; GOAL declares predicates itself";
+/// The reason given for loading files.
+const IMPORT: &str = "use `#import` to load Prolog files";
+/// The reason given for exceptions.
+const EXCEPTIONS: &str = "exceptions run only on the scryer KR engine";
+/// The reason given for what the KR layer lacks.
+const UNSUPPORTED: &str = "not supported by the KR layer";
+/// The reason given for the debugger.
+const DEBUGGER: &str = "the debugger is not part of the KR layer";
+/// The reason given for global variables and the recorded database.
+const GLOBALS: &str = "global variables and the recorded database bypass the mental state";
+
 /// The one table of names GOAL programs may not define or call, with the reason a diagnostic
 /// gives (docs/prolog.md). The validator reports them, the engines raise permission errors.
 const PROTECTED: &[(&str, &str)] = &[
-    ("assert", "updates go through GOAL's insert/delete actions"),
-    ("asserta", "updates go through GOAL's insert/delete actions"),
-    ("assertz", "updates go through GOAL's insert/delete actions"),
-    ("retract", "updates go through GOAL's insert/delete actions"),
-    (
-        "retractall",
-        "updates go through GOAL's insert/delete actions",
-    ),
-    ("abolish", "updates go through GOAL's insert/delete actions"),
+    ("assert", UPDATES),
+    ("asserta", UPDATES),
+    ("assertz", UPDATES),
+    ("retract", UPDATES),
+    ("retractall", UPDATES),
+    ("abolish", UPDATES),
     (":", "module qualification is not supported"),
-    (
-        "dynamic",
-        "directives are not supported; GOAL declares predicates itself",
-    ),
-    (
-        "multifile",
-        "directives are not supported; GOAL declares predicates itself",
-    ),
-    (
-        "discontiguous",
-        "directives are not supported; GOAL declares predicates itself",
-    ),
+    ("dynamic", DIRECTIVES),
+    ("multifile", DIRECTIVES),
+    ("discontiguous", DIRECTIVES),
     ("op", "the operator table is fixed"),
-    (
-        "char_conversion",
-        "directives are not supported; GOAL declares predicates itself",
-    ),
-    (
-        "initialization",
-        "directives are not supported; GOAL declares predicates itself",
-    ),
-    ("ensure_loaded", "use `#import` to load Prolog files"),
-    (
-        "module_transparent",
-        "directives are not supported; GOAL declares predicates itself",
-    ),
-    (
-        "meta_predicate",
-        "directives are not supported; GOAL declares predicates itself",
-    ),
-    (
-        "thread_local",
-        "directives are not supported; GOAL declares predicates itself",
-    ),
-    (
-        "volatile",
-        "directives are not supported; GOAL declares predicates itself",
-    ),
-    ("catch", "exceptions run only on the scryer KR engine"),
-    ("throw", "exceptions run only on the scryer KR engine"),
-    ("numbervars", "not supported by the KR layer"),
-    ("debug", "the debugger is not part of the KR layer"),
-    ("nodebug", "the debugger is not part of the KR layer"),
-    ("subsumes_term", "not supported by the KR layer"),
+    ("char_conversion", DIRECTIVES),
+    ("initialization", DIRECTIVES),
+    ("ensure_loaded", IMPORT),
+    ("module_transparent", DIRECTIVES),
+    ("meta_predicate", DIRECTIVES),
+    ("thread_local", DIRECTIVES),
+    ("volatile", DIRECTIVES),
+    ("catch", EXCEPTIONS),
+    ("throw", EXCEPTIONS),
+    ("numbervars", UNSUPPORTED),
+    ("debug", DEBUGGER),
+    ("nodebug", DEBUGGER),
+    ("subsumes_term", UNSUPPORTED),
     ("tmp_file_stream", "agents do not read or write files"),
-    ("consult", "use `#import` to load Prolog files"),
-    ("use_module", "use `#import` to load Prolog files"),
-    (
-        "module",
-        "directives are not supported; GOAL declares predicates itself",
-    ),
+    ("consult", IMPORT),
+    ("use_module", IMPORT),
+    ("module", DIRECTIVES),
     (
         "halt",
         "an agent stops through its program, never by stopping the process",
     ),
     ("set_prolog_flag", "Prolog flags are fixed"),
-    (
-        "nb_setval",
-        "global variables and the recorded database bypass the mental state",
-    ),
-    (
-        "b_setval",
-        "global variables and the recorded database bypass the mental state",
-    ),
-    (
-        "nb_getval",
-        "global variables and the recorded database bypass the mental state",
-    ),
-    (
-        "b_getval",
-        "global variables and the recorded database bypass the mental state",
-    ),
-    (
-        "recorda",
-        "global variables and the recorded database bypass the mental state",
-    ),
-    (
-        "recordz",
-        "global variables and the recorded database bypass the mental state",
-    ),
-    (
-        "erase",
-        "global variables and the recorded database bypass the mental state",
-    ),
-    (
-        "flag",
-        "global variables and the recorded database bypass the mental state",
-    ),
-    ("predicate_options", "not supported by the KR layer"),
-    ("current_predicate_option", "not supported by the KR layer"),
-    ("check_predicate_option", "not supported by the KR layer"),
+    ("nb_setval", GLOBALS),
+    ("b_setval", GLOBALS),
+    ("nb_getval", GLOBALS),
+    ("b_getval", GLOBALS),
+    ("recorda", GLOBALS),
+    ("recordz", GLOBALS),
+    ("erase", GLOBALS),
+    ("flag", GLOBALS),
+    ("predicate_options", UNSUPPORTED),
+    ("current_predicate_option", UNSUPPORTED),
+    ("check_predicate_option", UNSUPPORTED),
 ];
 
 /// Why file and operating-system predicates are refused.
