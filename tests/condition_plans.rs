@@ -131,18 +131,23 @@ impl Gen {
     }
 }
 
-#[test]
-fn planned_conditions_answer_as_the_engine_does() {
-    let (beliefs, other) = bases();
-    let bases = [&beliefs, &other];
-    let kn = Knowledge::load(&[c(
+/// Knowledge with one rule, `known(K) :- q(K)`: conditions on `known/1` are the engine's.
+fn knowledge() -> std::sync::Arc<Knowledge> {
+    Knowledge::load(&[c(
         ":-",
         vec![
             c("known", vec![Term::var("K")]),
             c("q", vec![Term::var("K")]),
         ],
     )])
-    .expect("knowledge");
+    .expect("knowledge")
+}
+
+#[test]
+fn planned_conditions_answer_as_the_engine_does() {
+    let (beliefs, other) = bases();
+    let bases = [&beliefs, &other];
+    let kn = knowledge();
     let view = View::beliefs(&kn, &bases);
     let mut engine = NativeEngine::new(7);
     let mut g = Gen(ChaCha8Rng::seed_from_u64(16));
@@ -186,14 +191,7 @@ fn planned_conditions_answer_as_the_engine_does() {
 
 #[test]
 fn what_a_plan_cannot_decide_is_not_planned() {
-    let kn = Knowledge::load(&[c(
-        ":-",
-        vec![
-            c("known", vec![Term::var("K")]),
-            c("q", vec![Term::var("K")]),
-        ],
-    )])
-    .expect("knowledge");
+    let kn = knowledge();
     let not_planned = [
         c("known", vec![Term::var("X")]),
         c(";", vec![c("q", vec![Term::var("X")]), Term::atom("true")]),
