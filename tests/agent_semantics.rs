@@ -415,6 +415,34 @@ fn session_facts_are_kept_for_programs_that_can_see_them() {
 }
 
 #[test]
+fn a_goal_on_a_conversation_is_achieved_when_the_answer_completes_it() {
+    let mut alice = agent_with(
+        "init module { goals { session(alice-1, bob, query, completed). } }
+         main module { program { if bel(not(sent(bob, int(x)))) then (bob).send(?x). } }",
+        "alice",
+        &["bob"],
+        1,
+    );
+    let mut bob = agent_with(
+        "main module { program {
+            if bel(received(alice, int(x))) then (alice).send(x) + delete(received(alice, int(x))). } }",
+        "bob",
+        &["alice"],
+        1,
+    );
+    // Alice asks (her goal checks see the conversation open), Bob answers.
+    let question = step(&mut alice, &[], &[]).messages;
+    assert_eq!(goals(&alice), ["session(alice-1,bob,query,completed)"]);
+    let answer = step(&mut bob, &[], &question).messages;
+    assert_eq!(answer.len(), 1);
+    // The answer completes the conversation: its `session/4` fact, which lives in the mailbox
+    // and not among the beliefs, achieves Alice's goal.
+    step(&mut alice, &[], &answer);
+    assert_eq!(session_facts(&alice), ["session(alice-1,bob,query,completed)"]);
+    assert_eq!(goals(&alice), Vec::<String>::new());
+}
+
+#[test]
 fn sendonce_skips_receivers_already_sent_to() {
     let mut a = agent_with(
         "main module { program { if true then allother.sendonce(hello). } }",

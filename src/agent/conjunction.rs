@@ -9,6 +9,7 @@
 
 use super::kr_bridge::{FactBase, Knowledge};
 use super::lookup::{size_if_ground, MAX_CANDIDATES, MAX_CELLS};
+use super::mailbox::is_mail_predicate;
 use super::mental_state::MentalState;
 use crate::kr::native::code::Key;
 use crate::term::{well_known as wk, Subst, Sym, Term};
@@ -215,7 +216,7 @@ fn pattern(t: &Term, kn: &Knowledge) -> Option<Pattern> {
     if kn.resolves(name, arity) || has_float(t) {
         return None;
     }
-    let mail = matches!((name, arity), (wk::RECEIVED | wk::SENT, 2)) || name.name() == "session";
+    let mail = is_mail_predicate(name, arity);
     Some(Pattern {
         term: t.clone(),
         by_hash: !mail && t.args().iter().any(|a| matches!(a, Term::Compound(_))),

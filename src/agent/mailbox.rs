@@ -115,6 +115,13 @@ pub fn is_mail_fact(t: &Term) -> bool {
     t.is_functor(wk::RECEIVED, 2) || t.is_functor(wk::SENT, 2)
 }
 
+/// True for the predicates whose facts the mailbox holds: `received/2`, `sent/2` and the
+/// conversations' `session/4`.
+pub fn is_mail_predicate(name: Sym, arity: usize) -> bool {
+    matches!((name, arity), (wk::RECEIVED | wk::SENT, 2))
+        || (arity == 4 && name.name() == "session")
+}
+
 impl Mailbox {
     /// The facts for queries (callers settle held facts first: see [`Mailbox::settle`]).
     pub fn facts(&self) -> &FactBase {

@@ -8,7 +8,7 @@ use super::kr_bridge::{
     AgentEngine, Engine, FactBase, Knowledge, KrError, Limits, NativeEngine, View,
 };
 use super::lookup;
-use super::mailbox::{is_mail_fact, Mailbox};
+use super::mailbox::{is_mail_fact, is_mail_predicate, Mailbox};
 use super::models::Models;
 use super::percepts::PerceptBase;
 use super::trace::Event;
@@ -693,10 +693,8 @@ impl MentalState {
     /// and it is not a fact of the mailbox, the agent directory or `me/1`.
     fn plain_goal_predicate(&self, name: Sym, arity: u32) -> bool {
         !self.knowledge.resolves(name, arity as usize)
-            && !matches!(
-                (name, arity),
-                (wk::RECEIVED, 2) | (wk::SENT, 2) | (wk::AGENT, 1) | (wk::ME, 1)
-            )
+            && !is_mail_predicate(name, arity as usize)
+            && !matches!((name, arity), (wk::AGENT, 1) | (wk::ME, 1))
     }
 
     /// The positions of the goals of the current attention set that the changes since the
