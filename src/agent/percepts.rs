@@ -108,21 +108,62 @@ impl PerceptBase {
             self.batch
                 .insert(Term::compound(newpercept, vec![p.clone()]));
         }
-        let mut positive: Vec<&Term> = Vec::new();
+        let mut positive: Vec<Term> = Vec::with_capacity(batch.len());
         let mut negative: Vec<&Term> = Vec::new();
         for p in batch {
             if p.is_functor(wk::NOT, 1) {
                 negative.push(&p.args()[0]);
             } else if p.functor().is_some() {
-                positive.push(p);
+                // Wrapped once: the same term is looked up and then stored.
+                positive.push(wrap(p));
             }
         }
-        // Predicates whose facts this batch replaces: all `Always` ones, and `OnChange` ones
-        // mentioned in the batch.
-        let in_batch: FxHashSet<&Term> = positive.iter().copied().collect();
+        if self.replaced_whole(&positive, types) {
+            // The common case of an environment that resends everything: no stored fact
+            // survives, so empty the base at once instead of finding and deleting each.
+            ch.removed
+                .extend(self.facts.iter().map(|f| f.args()[0].clone()));
+            self.facts.delete_all();
+        } else if !self.facts.is_empty() {
+            self.remove_stale(&positive, types, &mut ch);
+        }
+        for n in negative {
+            if self.facts.delete(&wrap(n)) {
+                ch.removed.push(n.clone());
+            }
+        }
+        for p in batch.iter().filter(|p| p.is_functor(wk::NOT, 1)) {
+            self.batch.insert(wrap(p));
+        }
+        for w in positive {
+            let p = w.args()[0].clone();
+            if self.facts.insert(w) {
+                ch.added.push(p);
+            }
+        }
+        ch
+    }
+
+    /// True when the batch (wrapped positive percepts) replaces every stored fact: all are
+    /// `Always` percepts and none of them is sent again.
+    fn replaced_whole(&self, positive: &[Term], types: &PerceptTypes) -> bool {
+        !self.facts.is_empty()
+            && positive.iter().all(|w| !self.facts.contains(w))
+            && self
+                .facts
+                .iter()
+                .all(|f| types.of(&f.args()[0]) == PerceptType::Always)
+    }
+
+    /// Removes the facts the batch replaces: all `Always` ones and the `OnChange` ones whose
+    /// predicate the batch mentions, unless the batch sends them again.
+    fn remove_stale(&mut self, positive: &[Term], types: &PerceptTypes, ch: &mut PerceptChanges) {
+        let in_batch: FxHashSet<&Term> = positive.iter().collect();
         // Membership only (never reaches output), so ordering by id is harmless here.
-        let mut mentioned: Vec<(Sym, usize)> =
-            positive.iter().filter_map(|p| p.functor()).collect();
+        let mut mentioned: Vec<(Sym, usize)> = positive
+            .iter()
+            .filter_map(|w| w.args()[0].functor())
+            .collect();
         mentioned.sort_unstable();
         mentioned.dedup();
         let stale: Vec<Term> = self
@@ -136,27 +177,13 @@ impl PerceptBase {
                     _ => false,
                 }
             })
-            .filter(|f| !in_batch.contains(&f.args()[0]))
+            .filter(|f| !in_batch.contains(f))
             .cloned()
             .collect();
         for f in stale {
             self.facts.delete(&f);
             ch.removed.push(f.args()[0].clone());
         }
-        for n in negative {
-            if self.facts.delete(&wrap(n)) {
-                ch.removed.push(n.clone());
-            }
-        }
-        for p in batch.iter().filter(|p| p.is_functor(wk::NOT, 1)) {
-            self.batch.insert(wrap(p));
-        }
-        for p in positive {
-            if self.facts.insert(wrap(p)) {
-                ch.added.push(p.clone());
-            }
-        }
-        ch
     }
 }
 
@@ -170,6 +197,39 @@ mod tests {
 
     fn not(p: Term) -> Term {
         Term::compound(wk::NOT, vec![p])
+    }
+
+    fn shown(base: &PerceptBase) -> Vec<String> {
+        base.facts().iter().map(|f| f.to_string()).collect()
+    }
+
+    #[test]
+    fn an_always_batch_replaces_stale_facts_and_keeps_repeated_ones_in_place() {
+        let types = PerceptTypes::default();
+        let mut base = PerceptBase::default();
+        base.apply(&[t("at", "r1"), t("seen", "a")], &types, false);
+        let edits = base.facts().edits();
+        // Nothing repeated: the whole base goes, removals in stored order.
+        let ch = base.apply(&[t("seen", "b"), t("at", "r2")], &types, false);
+        assert_eq!(ch.removed, vec![t("at", "r1"), t("seen", "a")]);
+        assert_eq!(ch.added, vec![t("seen", "b"), t("at", "r2")]);
+        assert_eq!(shown(&base), ["percept(seen(b))", "percept(at(r2))"]);
+        assert_eq!(base.facts().edits(), edits + 4, "one edit per change");
+        // One fact repeated: it stays where it was, the new one goes after it.
+        let ch = base.apply(&[t("seen", "c"), t("at", "r2")], &types, false);
+        assert_eq!(ch.removed, vec![t("seen", "b")]);
+        assert_eq!(ch.added, vec![t("seen", "c")]);
+        assert_eq!(shown(&base), ["percept(at(r2))", "percept(seen(c))"]);
+    }
+
+    #[test]
+    fn a_batch_keeps_once_percepts_it_does_not_repeat() {
+        let types = PerceptTypes::new([(("color".to_string(), 1), PerceptType::Once)]);
+        let mut base = PerceptBase::default();
+        base.apply(&[t("color", "red"), t("at", "r1")], &types, false);
+        let ch = base.apply(&[t("at", "r2")], &types, false);
+        assert_eq!(ch.removed, vec![t("at", "r1")]);
+        assert_eq!(shown(&base), ["percept(color(red))", "percept(at(r2))"]);
     }
 
     #[test]

@@ -252,6 +252,13 @@ impl FactBase {
         self.arg2.clear();
     }
 
+    /// Removes every fact, as deleting them one by one would (same edit count, allocations of
+    /// a small base kept): cheaper when a whole base is replaced.
+    pub fn delete_all(&mut self) {
+        self.edits += self.len() as u64;
+        self.reset();
+    }
+
     /// Removes every fact and frees the memory.
     pub fn clear(&mut self) {
         let edits = self.edits + 1;
