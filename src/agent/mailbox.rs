@@ -112,7 +112,13 @@ pub struct Mailbox {
 
 /// True for `received/2` and `sent/2` facts (which insert/delete route to the mailbox).
 pub fn is_mail_fact(t: &Term) -> bool {
-    t.is_functor(wk::RECEIVED, 2) || t.is_functor(wk::SENT, 2)
+    t.functor()
+        .is_some_and(|(name, arity)| is_mail_predicate(name, arity))
+}
+
+/// True for the predicates of the mail facts, `received/2` and `sent/2`.
+pub fn is_mail_predicate(name: Sym, arity: usize) -> bool {
+    arity == 2 && (name == wk::RECEIVED || name == wk::SENT)
 }
 
 impl Mailbox {
