@@ -438,7 +438,10 @@ fn a_goal_on_a_conversation_is_achieved_when_the_answer_completes_it() {
     // The answer completes the conversation: its `session/4` fact, which lives in the mailbox
     // and not among the beliefs, achieves Alice's goal.
     step(&mut alice, &[], &answer);
-    assert_eq!(session_facts(&alice), ["session(alice-1,bob,query,completed)"]);
+    assert_eq!(
+        session_facts(&alice),
+        ["session(alice-1,bob,query,completed)"]
+    );
     assert_eq!(goals(&alice), Vec::<String>::new());
 }
 

@@ -59,3 +59,39 @@ fn goal_queries_bind_like_the_engine() {
     );
     assert_eq!(out, ["g(a,1)", "g(b,2)", "w(c)", "yes"]);
 }
+
+#[test]
+fn goal_fact_answers_keep_goal_order_and_drop_repeats() {
+    // Goals of one fact and conjunctions sharing a fact (`fib(1)` twice): answers in adoption
+    // order, each once; a believed fact answers `goal-a` and not `a-goal`.
+    let out = printed(
+        "init module {
+            beliefs { fib(0). }
+            goals { fib(3). fib(2), fib(1). fib(1). fib(0), fib(4). fib(5). }
+         }
+         main module { program [order=linearall] {
+            forall a-goal(fib(N)) do print(a(N)).
+            forall goal-a(fib(N)) do print(b(N)).
+            forall a-goal(fib(1)) do print(c(1)).
+         } }",
+        3,
+    );
+    assert_eq!(
+        out,
+        ["a(3)", "a(2)", "a(1)", "a(4)", "a(5)", "b(0)", "c(1)"]
+    );
+}
+
+#[test]
+fn goals_of_one_fact_answer_once_each_in_adoption_order() {
+    let out = printed(
+        "init module { beliefs { fib(2). } goals { fib(4). fib(1). fib(2). fib(3). } }
+         main module { program [order=linearall] {
+            forall a-goal(fib(N)) do print(a(N)).
+            forall goal-a(fib(N)) do print(b(N)).
+            if true then exit-module.
+         } }",
+        3,
+    );
+    assert_eq!(out, ["a(4)", "a(1)", "a(3)"]);
+}

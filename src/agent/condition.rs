@@ -3,7 +3,7 @@
 
 use super::error::Fault;
 use super::goals::Goal;
-use super::mental_state::{GoalQuery, MentalState};
+use super::mental_state::{match_fact, GoalQuery, MentalState};
 use super::program::Lit;
 use crate::kr::fxhash::{FxHashMap, FxHasher};
 use crate::kr::native::code::Key;
@@ -248,6 +248,11 @@ fn literal(
                 (false, Some(_)) => None,
                 (false, None) => Some(ms.attention.current()),
             };
+            if let Some(b) = base.filter(|_| *op != MentalOp::Goal) {
+                if goal_fact_answers(ms, b, &gq, *op == MentalOp::GoalA, &mut raw) {
+                    return Ok(finish(*negated, raw));
+                }
+            }
             // When only goal facts answer the query, the goals without a fact of its
             // predicate have no answer: look at the others alone (the base's index).
             let goals: SmallVec<[&Goal; 16]> = match (base, gq.fact_predicate()) {
@@ -300,14 +305,68 @@ fn literal(
             }
         }
     }
-    if *negated {
-        return Ok(if raw.items.is_empty() {
-            vec![Subst::new()]
-        } else {
-            Vec::new()
-        });
+    Ok(finish(*negated, raw))
+}
+
+/// A literal's answers from the answers of its query: for a negated literal, one empty answer
+/// when the query had none, else none.
+fn finish(negated: bool, raw: AnswerSet) -> Vec<Subst> {
+    match negated {
+        false => raw.items,
+        true if raw.items.is_empty() => vec![Subst::new()],
+        true => Vec::new(),
     }
-    Ok(raw.items)
+}
+
+/// The answers of an `a-goal` (`believed` false) or `goal-a` (`believed` true) query over
+/// the goals of `base`, read from the goal facts directly when nothing but goal facts
+/// answers the query, the query has no `_` (so the instance an answer makes is the goal fact
+/// it matched) and a ground fact's belief is a lookup: the goals with a fact of the query's
+/// predicate (and first argument) in adoption order, each fact matched and looked up in the
+/// belief bases. False (and nothing added): not decided here.
+fn goal_fact_answers(
+    ms: &MentalState,
+    base: &super::goals::GoalBase,
+    gq: &GoalQuery<'_>,
+    believed: bool,
+    raw: &mut AnswerSet,
+) -> bool {
+    let q = gq.query;
+    let Some((name, arity)) = gq.fact_predicate() else {
+        return false;
+    };
+    if !base.exactly_indexed() || has_anonymous(q) {
+        return false;
+    }
+    let Some(holders) = ms.fact_holders(name, arity) else {
+        return false;
+    };
+    let positions = match q.args().first().and_then(Key::of_term) {
+        Some(key) => base.positions_with_key(name, arity as u32, key),
+        None => base.positions(name, arity as u32),
+    };
+    let goals = base.goals();
+    // A goal of one fact has at most one answer, and with no `_` in the query the answer
+    // decides the fact: goals of one fact each (distinct goals) give distinct answers.
+    let distinct = positions
+        .iter()
+        .all(|&i| goals[i as usize].facts.len() == 1);
+    raw.items.reserve(positions.len());
+    for &i in positions {
+        let facts = goals[i as usize].facts.iter();
+        for fact in facts.filter(|f| f.functor() == Some((name, arity))) {
+            let mut a = Subst::with_capacity(arity);
+            if !match_fact(q, fact, &mut a) || holders.iter().any(|b| b.contains(fact)) != believed
+            {
+                continue;
+            }
+            match distinct {
+                true => raw.push_new(a),
+                false => raw.push(a),
+            }
+        }
+    }
+    true
 }
 
 /// True when `t` has the anonymous variable `_`.

@@ -344,6 +344,22 @@ impl MentalState {
         self.believes_known(q, true)
     }
 
+    /// The fact bases that can hold a ground fact of `name/arity`, when whether such a fact is
+    /// believed is decided by looking it up in them (only facts answer the predicate and the
+    /// engine is the native one, as in [`MentalState::believes`]); `None`: ask `believes`.
+    pub(crate) fn fact_holders(&self, name: Sym, arity: usize) -> Option<SmallVec<[&FactBase; 6]>> {
+        if is_mail_predicate(name, arity) || self.knowledge.resolves(name, arity) || !self.native()
+        {
+            return None;
+        }
+        Some(
+            self.bases()
+                .into_iter()
+                .filter(|b| b.has_pred(name, arity))
+                .collect(),
+        )
+    }
+
     /// [`MentalState::believes`], told whether `q` is ground.
     fn believes_known(&self, q: &Term, ground: bool) -> Result<bool, Fault> {
         // A ground fact only facts answer: present in some base or not (as the engine finds).
@@ -885,7 +901,10 @@ impl<'q> GoalQuery<'q> {
 
 /// Matches `pattern` against the ground `fact`, binding the pattern's variables (but `_`, which
 /// matches anything) in reading order, as the engine's answers do; false when they differ.
-fn match_fact(pattern: &Term, fact: &Term, s: &mut Subst) -> bool {
+pub(super) fn match_fact(pattern: &Term, fact: &Term, s: &mut Subst) -> bool {
+    if let Some(matched) = match_flat(pattern, fact, s) {
+        return matched;
+    }
     // Argument lists still to match, the innermost last (leftmost argument first).
     let mut work: SmallVec<[(&[Term], &[Term]); 8]> =
         smallvec![(std::slice::from_ref(pattern), std::slice::from_ref(fact))];
@@ -896,12 +915,6 @@ fn match_fact(pattern: &Term, fact: &Term, s: &mut Subst) -> bool {
         };
         (*ps, *fs) = (p_rest, f_rest);
         match (p, f) {
-            (Term::Var(v), _) if *v == wk::UNDERSCORE => {}
-            (Term::Var(v), _) => match s.get(*v) {
-                Some(bound) if bound != f => return false,
-                Some(_) => {}
-                None => s.bind(*v, f.clone()),
-            },
             (Term::Compound(p), Term::Compound(f)) => {
                 if p.name != f.name || p.args.len() != f.args.len() {
                     return false;
@@ -909,13 +922,48 @@ fn match_fact(pattern: &Term, fact: &Term, s: &mut Subst) -> bool {
                 work.push((&p.args, &f.args));
             }
             _ => {
-                if p != f {
+                if !match_leaf(p, f, s) {
                     return false;
                 }
             }
         }
     }
     true
+}
+
+/// [`match_fact`] of a pattern whose arguments have no compound term (`fib(N)`, `at(a, X)`):
+/// one pass over the arguments; `None` for other patterns.
+fn match_flat(pattern: &Term, fact: &Term, s: &mut Subst) -> Option<bool> {
+    let (Term::Compound(p), Term::Compound(f)) = (pattern, fact) else {
+        return None;
+    };
+    if p.args.iter().any(|a| matches!(a, Term::Compound(_))) {
+        return None;
+    }
+    if p.name != f.name || p.args.len() != f.args.len() {
+        return Some(false);
+    }
+    Some(
+        p.args
+            .iter()
+            .zip(f.args.iter())
+            .all(|(p, f)| match_leaf(p, f, s)),
+    )
+}
+
+/// [`match_fact`] of a pattern that is a variable or atomic against a fact's term.
+fn match_leaf(p: &Term, f: &Term, s: &mut Subst) -> bool {
+    match p {
+        Term::Var(v) if *v == wk::UNDERSCORE => true,
+        Term::Var(v) => match s.get(*v) {
+            Some(bound) => bound == f,
+            None => {
+                s.bind(*v, f.clone());
+                true
+            }
+        },
+        _ => p == f,
+    }
 }
 
 #[cfg(test)]
