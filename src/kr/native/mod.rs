@@ -7,6 +7,7 @@ pub(crate) mod bigint;
 pub(crate) mod budget;
 pub(crate) mod builtins;
 pub(crate) mod catch;
+pub(crate) mod clauses;
 pub(crate) mod code;
 pub(crate) mod control;
 pub(crate) mod facts;

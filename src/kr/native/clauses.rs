@@ -1,0 +1,307 @@
+//! Calling a goal: built-ins through their table, user predicates by their clauses (first
+//! argument indexing, head matching, the first body goal called at once without a frame).
+
+use super::code::{Key, UNSET};
+use super::machine::{Alt, Frame, Goal, Solver, NONE};
+use super::store::{Cell, VarNames};
+use crate::kr::error::{KrError, KrResult};
+use crate::kr::knowledge::{Pred, PredRef};
+use crate::term::{Sym, Term};
+
+/// A clause's first body goal, called right after the clause's head matched, with its
+/// arguments built on the heap without a goal term around them and without a frame.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Direct {
+    pred: PredRef,
+    /// Heap address of the first argument (the others follow it).
+    args: u32,
+    next: u32,
+    depth: u32,
+}
+
+impl<'a, 'm> Solver<'a, 'm> {
+    /// Calls goal `g`.
+    pub(crate) fn call(
+        &mut self,
+        g: Cell,
+        next: u32,
+        cut: u32,
+        depth: u32,
+        pred: Option<PredRef>,
+    ) -> KrResult<bool> {
+        let g = self.m.st.deref(g);
+        let (name, arity, p) = match g {
+            Cell::Atom(s) => (s, 0, 0),
+            Cell::Ptr(p) => match self.m.st.heap[p as usize] {
+                Cell::Fun(s, n) => (s, n, p),
+                _ => return Ok(false),
+            },
+            Cell::Ref(_) => {
+                return Err(KrError::iso(Term::atom("instantiation_error"), None));
+            }
+            other => {
+                let t = self.m.st.to_term(other, &mut VarNames::new(&[]));
+                return Err(KrError::iso(
+                    Term::compound("type_error", vec![Term::atom("callable"), t]),
+                    None,
+                ));
+            }
+        };
+        self.inferences += 1;
+        if self.inferences >= self.next_check {
+            self.checkpoint(&|| format!("{}/{}", Term::Atom(name), arity))?;
+        }
+        let pred = match pred {
+            Some(r) => Some(r),
+            None => self.cx.kn.table.get(&(name, arity)).copied(),
+        };
+        match pred {
+            Some(PredRef::Builtin(b)) => self.builtin(b, g, p, next, cut, depth),
+            Some(r) => self.call_clauses(r, Some(g), Self::args_of(g), next, depth),
+            None => {
+                let b = self.m.cps.len() as u32;
+                let scan = self.start_scan(0, g, name, arity, p);
+                self.try_facts(g, 0, scan, b, false, next)
+            }
+        }
+    }
+
+    /// The heap address of the first argument of goal `g` (a structure or an atom).
+    #[inline]
+    pub(crate) fn args_of(g: Cell) -> u32 {
+        match g {
+            Cell::Ptr(p) => p + 1,
+            _ => 0,
+        }
+    }
+
+    /// The goal `name(args...)` of `arity` arguments from heap address `args` on, built as a
+    /// term (for a choicepoint or a fact scan, which keep the goal).
+    fn goal_at(&mut self, name: Sym, arity: u32, args: u32) -> Cell {
+        if arity == 0 {
+            return Cell::Atom(name);
+        }
+        let heap = &mut self.m.st.heap;
+        let p = heap.len() as u32;
+        heap.push(Cell::Fun(name, arity));
+        heap.extend_from_within(args as usize..(args + arity) as usize);
+        Cell::Ptr(p)
+    }
+
+    /// Calls the clauses of a clause's first body goal (see [`Direct`]).
+    pub(crate) fn call_direct(&mut self, d: Direct) -> KrResult<bool> {
+        self.inferences += 1;
+        if self.inferences >= self.next_check {
+            let p = self.pred(d.pred);
+            let (name, arity) = (p.name, p.arity);
+            self.checkpoint(&|| format!("{}/{}", Term::Atom(name), arity))?;
+        }
+        self.call_clauses(d.pred, None, d.args, d.next, d.depth)
+    }
+
+    /// Calls the clauses (and goal facts) of predicate `r` on the arguments at heap address
+    /// `args`; `goal` is the goal term when there is one already.
+    fn call_clauses(
+        &mut self,
+        r: PredRef,
+        mut goal: Option<Cell>,
+        args: u32,
+        next: u32,
+        depth: u32,
+    ) -> KrResult<bool> {
+        let pred = self.pred(r);
+        let (name, arity) = (pred.name, pred.arity);
+        let key = if arity > 0 {
+            Key::of_cell(&self.m.st, self.m.st.heap[args as usize])
+        } else {
+            None
+        };
+        if depth > self.cx.limits.max_depth {
+            return Err(KrError::Depth {
+                predicate: format!("{}/{}", Term::Atom(name), arity),
+                limit: self.cx.limits.max_depth,
+            });
+        }
+        // A goal's facts join the knowledge clauses of their predicate (GOAL's goal
+        // module holds both): `goals { done. }` with `done :- ...` in knowledge. The
+        // facts are tried after the clauses, as facts asserted after them would be.
+        let arity_usize = arity as usize;
+        if self
+            .cx
+            .goal_facts
+            .iter()
+            .any(|f| f.functor() == Some((name, arity_usize)))
+        {
+            let g = match goal {
+                Some(g) => g,
+                None => self.goal_at(name, arity, args),
+            };
+            goal = Some(g);
+            let p = match g {
+                Cell::Ptr(p) => p,
+                _ => 0,
+            };
+            let stage = self.cx.bases.len() as u32;
+            let scan = self.start_scan(stage, g, name, arity, p);
+            self.push_choice(
+                Alt::Facts {
+                    goal: g,
+                    stage,
+                    scan,
+                },
+                next,
+                0,
+                depth,
+            );
+        }
+        let b = self.m.cps.len() as u32;
+        self.try_clauses(goal, args, r, key, 0, b, false, next, depth)
+    }
+
+    /// The first clause index at or after `i` whose first-argument key can match `key`.
+    #[inline]
+    pub(crate) fn skip(pred: &Pred, list: &[u32], mut i: usize, key: Option<Key>) -> usize {
+        if let Some(k) = key {
+            while i < list.len() {
+                match pred.clauses[list[i] as usize].key {
+                    Some(ck) if ck != k => i += 1,
+                    _ => break,
+                }
+            }
+        }
+        i
+    }
+
+    /// Tries the clauses of `r` from candidate position `pos`; the choicepoint for this goal is
+    /// (or will be) at index `b`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn try_clauses(
+        &mut self,
+        mut goal: Option<Cell>,
+        args: u32,
+        r: PredRef,
+        key: Option<Key>,
+        pos: u32,
+        b: u32,
+        mut has_choice: bool,
+        next: u32,
+        depth: u32,
+    ) -> KrResult<bool> {
+        let pred = self.pred(r);
+        // The second-argument key is read from the goal on every entry: backtracking restores
+        // the bindings of the call, so the candidate list is the same each time.
+        let key2 = if key.is_none() && pred.arity >= 2 && pred.has_second_index() {
+            Key::of_cell(&self.m.st, self.m.st.heap[args as usize + 1])
+        } else {
+            None
+        };
+        let list = pred.candidates(key, key2);
+        let mut i = Self::skip(pred, list, pos as usize, key);
+        loop {
+            if i >= list.len() {
+                if has_choice {
+                    self.m.cps.truncate(b as usize);
+                }
+                return Ok(false);
+            }
+            let j = Self::skip(pred, list, i + 1, key);
+            if j < list.len() {
+                let goal = match goal {
+                    Some(g) => g,
+                    None => *goal.insert(self.goal_at(pred.name, pred.arity, args)),
+                };
+                let alt = Alt::Clauses {
+                    goal,
+                    pred: r,
+                    key,
+                    pos: j as u32,
+                };
+                if has_choice {
+                    self.m.cps[b as usize].alt = alt;
+                } else {
+                    self.push_choice(alt, next, 0, depth);
+                    has_choice = true;
+                }
+            } else if has_choice {
+                self.m.cps.truncate(b as usize);
+                has_choice = false;
+            }
+            let (hm, tm, fm, sm) = (
+                self.m.st.heap.len(),
+                self.m.st.trail.len(),
+                self.m.frames.len(),
+                self.m.st.strs.len(),
+            );
+            if self.try_clause(pred, list[i], args, next, b) {
+                return Ok(true);
+            }
+            self.m.st.undo(tm);
+            self.m.st.heap.truncate(hm);
+            self.m.st.strs.truncate(sm);
+            self.m.frames.truncate(fm);
+            i = j;
+        }
+    }
+
+    /// Matches clause `ci`'s head against the arguments at heap address `args` and schedules
+    /// its body: the first goal as the next [`Direct`] call when it calls clauses, the others
+    /// as frames.
+    pub(crate) fn try_clause(
+        &mut self,
+        pred: &'a Pred,
+        ci: u32,
+        args: u32,
+        next: u32,
+        cut: u32,
+    ) -> bool {
+        let cl = &pred.clauses[ci as usize];
+        let m = &mut *self.m;
+        m.slots.clear();
+        m.slots.resize(cl.nslots as usize, UNSET);
+        if let Cell::Ptr(off) = cl.head {
+            let (off, args, n) = (off as usize + 1, args as usize, pred.arity as usize);
+            for (i, &c) in cl.code.cells[off..off + n].iter().enumerate() {
+                let h = m.st.heap[args + i];
+                if !cl.code.unify_arg(&mut m.st, c, h, &mut m.slots) {
+                    return false;
+                }
+            }
+        }
+        let direct = match cl.preds.first() {
+            Some(Some(r @ (PredRef::User(_) | PredRef::Lib(_)))) => Some(*r),
+            _ => None,
+        };
+        let mut nx = next;
+        // Depth is the continuation length: the last body goal is one deeper than `next`.
+        let mut d = if next == NONE {
+            0
+        } else {
+            m.frames[next as usize].depth
+        };
+        let framed = usize::from(direct.is_some());
+        m.frames.reserve(cl.body.len());
+        for (g, pred) in cl.body.iter().zip(&cl.preds).skip(framed).rev() {
+            let c = cl.code.build(&mut m.st, *g, &mut m.slots);
+            d += 1;
+            m.frames.push(Frame {
+                goal: Goal::Call(c),
+                next: nx,
+                cut,
+                depth: d,
+                pred: *pred,
+            });
+            nx = m.frames.len() as u32 - 1;
+        }
+        if let Some(pred) = direct {
+            let args = cl.code.build_args(&mut m.st, cl.body[0], &mut m.slots);
+            self.direct = Some(Direct {
+                pred,
+                args,
+                next: nx,
+                depth: d + 1,
+            });
+        }
+        self.cont = nx;
+        true
+    }
+}
