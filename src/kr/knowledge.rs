@@ -282,9 +282,9 @@ fn check_body(goal: &Term, errors: &mut Vec<String>) {
                 stack.push((&args[1], false));
                 stack.push((&args[0], false));
             }
-            ("\\+", 1) | ("not", 1) | ("once", 1) | ("ignore", 1) | ("call", _) => {
-                stack.push((&args[0], false))
-            }
+            ("\\+", 1) | ("not", 1) | ("once", 1) | ("ignore", 1) => stack.push((&args[0], false)),
+            // The atom `call` (arity 0) has no goal to check: calling it is an existence error.
+            ("call", n) if n >= 1 => stack.push((&args[0], false)),
             ("findall", 3) | ("findall", 4) | ("aggregate_all", 3) => stack.push((&args[1], false)),
             ("bagof", 3) | ("setof", 3) | ("aggregate", 3) => stack.push((&args[1], true)),
             ("aggregate_all", 4) | ("aggregate", 4) => stack.push((&args[2], true)),
@@ -569,5 +569,19 @@ mod tests {
         // on(f, Y) matches any second argument.
         assert!(answers("\\+ on(_, a)").is_empty());
         assert_eq!(answers("\\+ on(b, b)"), [""]);
+    }
+
+    #[test]
+    fn a_body_calling_the_atom_call_loads_and_answers_like_an_unknown_predicate() {
+        let mut r = Reader::new("t");
+        let src = "t :- call. u(X) :- call(call, p, X). v :- call(call, true). w :- foo.";
+        let (clauses, _) = r.clauses(src, 0);
+        let kn = Knowledge::load(&clauses.into_iter().map(|c| c.term).collect::<Vec<_>>()).unwrap();
+        let mut e = NativeEngine::new(0);
+        let view = View::beliefs(&kn, &[]);
+        let mut count = |q: &str| e.query(&view, &r.term(q, 0).unwrap().term).map(|a| a.len());
+        assert_eq!(count("t"), count("w"));
+        assert_eq!(count("u(_)"), count("w"));
+        assert_eq!(count("v"), Ok(1));
     }
 }
