@@ -204,7 +204,15 @@ impl Mailbox {
     }
 
     /// Moves the held `sent/2` facts into the fact base, in the order they were sent.
+    #[inline]
     pub fn settle(&mut self) {
+        // Called before every read and after every combo, nearly always with nothing held.
+        if !self.held.is_empty() {
+            self.settle_held();
+        }
+    }
+
+    fn settle_held(&mut self) {
         // Drained, not taken: the buffer is kept for the next combo's sends.
         for (r, c) in self.held.drain(..) {
             self.facts.insert(sent(&Term::Atom(r), &c));
