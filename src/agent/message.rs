@@ -219,7 +219,9 @@ impl Core {
                 self.ms.mailbox.insert(f);
             }
         }
-        self.changes(ev);
+        if !ev.is_empty() {
+            self.changes(ev);
+        }
         Ok(!messages.is_empty())
     }
 }
