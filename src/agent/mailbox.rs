@@ -8,19 +8,6 @@ use crate::term::{well_known as wk, Subst, Sym, Term};
 /// delete to the fact base's hash lookup.
 const SCAN: usize = 8;
 
-/// `t` with its variable bindings under `s` followed, as [`Subst::walk`] does; a variable
-/// is told from its value by its name alone (no general term comparison per step).
-fn deref<'a>(s: &'a Subst, mut t: &'a Term) -> &'a Term {
-    while let Term::Var(v) = t {
-        match s.get(*v) {
-            Some(Term::Var(w)) if w == v => break,
-            Some(next) => t = next,
-            None => break,
-        }
-    }
-    t
-}
-
 /// True when `pattern` under `s` is the ground term `fact` (walked side by side, nothing built).
 fn same_under(s: &Subst, pattern: &Term, fact: &Term) -> bool {
     // Messages are small: the walk's stack stays inline. The walk goes down the first argument
@@ -29,7 +16,7 @@ fn same_under(s: &Subst, pattern: &Term, fact: &Term) -> bool {
     let mut work: smallvec::SmallVec<[(&Term, &Term); 8]> = smallvec::SmallVec::new();
     let (mut p, mut f) = (pattern, fact);
     loop {
-        match (deref(s, p), f) {
+        match (s.walk(p), f) {
             (Term::Var(_), _) => return false,
             (Term::Compound(a), Term::Compound(b)) if !std::sync::Arc::ptr_eq(a, b) => {
                 if a.name != b.name || a.args.len() != b.args.len() {
@@ -90,7 +77,7 @@ fn is_held((r, c): &(Sym, Term), fact: &Term) -> bool {
 /// True when `pattern` under `s` is the held `sent(receiver, content)`.
 fn held_under(s: &Subst, pattern: &Term, (r, c): &(Sym, Term)) -> bool {
     pattern.is_functor(wk::SENT, 2)
-        && matches!(deref(s, &pattern.args()[0]), Term::Atom(a) if a == r)
+        && matches!(s.walk(&pattern.args()[0]), Term::Atom(a) if a == r)
         && same_under(s, &pattern.args()[1], c)
 }
 

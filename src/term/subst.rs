@@ -102,9 +102,12 @@ impl Subst {
     /// Follows variable bindings until an unbound variable or a non-variable term.
     pub fn walk<'a>(&'a self, mut t: &'a Term) -> &'a Term {
         while let Term::Var(v) = t {
+            // A variable bound to itself ends the chain; it is told by its name alone, without
+            // a general term comparison per step.
             match self.get(*v) {
-                Some(next) if next != t => t = next,
-                _ => break,
+                Some(Term::Var(w)) if w == v => break,
+                Some(next) => t = next,
+                None => break,
             }
         }
         t
