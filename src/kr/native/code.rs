@@ -240,6 +240,20 @@ impl Code {
         }
     }
 
+    /// The argument cells of the compiled goal `root` when none of them is a structure (they
+    /// are slots and constants, each built alone); `None` otherwise.
+    #[inline]
+    pub fn flat_args(&self, root: Cell) -> Option<&[Cell]> {
+        match root {
+            Cell::Ptr(off) => {
+                let (from, end) = (off as usize + 1, self.ends[off as usize] as usize);
+                let n = self.cells[off as usize].fun().map_or(0, |f| f.1 as usize);
+                (end - from == n).then(|| &self.cells[from..end])
+            }
+            _ => Some(&[]),
+        }
+    }
+
     /// Copies cells `from..end` of this code to the top of the heap, then rewrites the cells
     /// that mean something else on the heap (slots, offsets, string indices); returns the heap
     /// address of the first copied cell.
