@@ -13,6 +13,7 @@ const SHALLOW_DEPTH: u32 = 4;
 
 impl<'a> Solver<'a, '_> {
     /// Starts scanning fact source `stage` (a fact base, or the goal facts after the last base).
+    #[inline]
     pub(crate) fn start_scan(&self, stage: u32, _g: Cell, name: Sym, arity: u32, p: u32) -> Scan {
         if (stage as usize) < self.cx.bases.len() {
             let base = self.cx.bases[stage as usize];
