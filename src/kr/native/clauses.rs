@@ -342,12 +342,17 @@ impl<'a, 'm> Solver<'a, 'm> {
                 Some(cells) if cells.len() <= MAX_REGS => {
                     for (i, &c) in cells.iter().enumerate() {
                         m.regs.0[i] = match c {
+                            // By value: a copy made field by field and read back whole
+                            // stalls the store-to-load forwarding.
                             Cell::Ref(k) if (k as usize) < m.slots.len() => {
-                                let s = &mut m.slots[k as usize];
-                                if let Cell::Ref(u32::MAX) = *s {
-                                    *s = m.st.new_var();
+                                let v = m.slots[k as usize];
+                                if let Cell::Ref(u32::MAX) = v {
+                                    let v = m.st.new_var();
+                                    m.slots[k as usize] = v;
+                                    v
+                                } else {
+                                    v
                                 }
-                                *s
                             }
                             Cell::Atom(_) | Cell::Int(_) | Cell::Flt(_) => c,
                             _ => cl.code.build(&mut m.st, c, &mut m.slots),
