@@ -264,13 +264,13 @@ impl Code {
         heap.extend_from_slice(&self.cells[from as usize..end as usize]);
         for (a, c) in (base..).zip(&mut heap[base as usize..]) {
             match *c {
+                // A set slot's value is copied whole (see `Solver::try_clause`).
                 Cell::Ref(k) => {
-                    *c = match slots.get_mut(k as usize) {
-                        Some(s) => {
-                            if let Cell::Ref(u32::MAX) = *s {
-                                *s = Cell::Ref(a);
-                            }
-                            *s
+                    *c = match slots.get(k as usize) {
+                        Some(&v) if !matches!(v, Cell::Ref(u32::MAX)) => v,
+                        Some(_) => {
+                            slots[k as usize] = Cell::Ref(a);
+                            Cell::Ref(a)
                         }
                         None => Cell::Ref(a),
                     }
