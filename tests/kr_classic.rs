@@ -207,6 +207,40 @@ fn first_body_goals_answer_in_order_and_raise_errors() {
     assert_eq!(shown(a), ["E=instantiation_error"]);
 }
 
+/// A first body goal whose arguments are variables and constants passes them without building
+/// a block on the heap: fresh variables still compare by age in argument order, strings and
+/// big integers arrive whole, and a choicepoint over the callee keeps the arguments.
+#[test]
+fn first_body_goal_arguments_keep_variable_age_and_constants() {
+    let kn = load(
+        "order(R) :- two(X, Y, \"s\", 7), (X @< Y -> R = older_first ; R = younger_first). \
+         two(_, _, S, N) :- string(S), integer(N). \
+         big(X) :- id(X, 123456789012345678901234567890, \"txt\", 1.5). \
+         id(X, X, T, F) :- string(T), float(F). \
+         pick(X, S) :- alt(X, \"k\", S). \
+         alt(1, K, K). alt(2, _, other). alt(3, K, K).",
+    );
+    let mut e = NativeEngine::new(0);
+    let v = View::beliefs(&kn, &[]);
+    let one = |e: &mut NativeEngine, q: &str| -> Vec<String> {
+        e.query(&v, &read(q))
+            .unwrap()
+            .iter()
+            .map(|s| {
+                let mut b: Vec<String> = s.iter().map(|(k, t)| format!("{k}={t}")).collect();
+                b.sort();
+                b.join(",")
+            })
+            .collect()
+    };
+    assert_eq!(one(&mut e, "order(R)"), ["R=older_first"]);
+    assert_eq!(one(&mut e, "big(X)"), ["X=123456789012345678901234567890"]);
+    assert_eq!(
+        one(&mut e, "pick(X, S)"),
+        ["S=\"k\",X=1", "S=other,X=2", "S=\"k\",X=3"]
+    );
+}
+
 fn limited(program: &str, query: &str, limits: Limits) -> Result<usize, KrError> {
     let kn = load(program);
     let mut e = NativeEngine::new(0).with_limits(limits);
@@ -422,6 +456,33 @@ fn ground_fact_queries_count_every_source() {
             .map(|s| s.len()),
         Some(1)
     );
+}
+
+/// Facts of one predicate spread over several bases (some without it) answer base by base in
+/// insertion order, also when backtracking resumes after bases that lack the predicate.
+#[test]
+fn facts_over_several_bases_answer_in_base_order() {
+    let kn = load("both(X, Y) :- f(X), f(Y).");
+    let mut bases: Vec<FactBase> = (0..4).map(|_| FactBase::new()).collect();
+    bases[0].insert(read("f(1)"));
+    bases[1].insert(read("other(1)"));
+    bases[2].insert(read("f(2)"));
+    bases[2].insert(read("f(3)"));
+    bases[3].insert(read("f(4)"));
+    let refs: Vec<&FactBase> = bases.iter().collect();
+    let v = View::beliefs(&kn, &refs);
+    let mut e = NativeEngine::new(0);
+    let xs: Vec<String> = e
+        .query(&v, &read("f(X)"))
+        .unwrap()
+        .iter()
+        .map(|s| s.iter().map(|(_, t)| t.to_string()).collect())
+        .collect();
+    assert_eq!(xs, ["1", "2", "3", "4"]);
+    assert_eq!(e.query(&v, &read("both(X, Y)")).unwrap().len(), 16);
+    assert_eq!(e.query(&v, &read("f(3)")).unwrap().len(), 1);
+    assert_eq!(e.query(&v, &read("other(X)")).unwrap().len(), 1);
+    assert_eq!(e.query(&v, &read("f(5)")).unwrap().len(), 0);
 }
 
 /// GOAL's goal module holds the knowledge and the goal's facts: a goal fact counts even when

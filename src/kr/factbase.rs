@@ -60,11 +60,21 @@ pub struct FactBase {
     ids: FxHashMap<Term, u32>,
     all: Option<List>,
     preds: FxHashMap<(Sym, u32), List>,
+    /// One bit per predicate present ([`pred_bit`]): most asks are for predicates a base
+    /// lacks, and a clear bit says so without hashing.
+    pred_bits: u64,
     arg1: FxHashMap<(Sym, u32, Key), List>,
     arg2: FxHashMap<(Sym, u32, Key), List>,
     /// Successful inserts and deletes so far (clearing counts as one): lets a reader tell
     /// cheaply whether the base changed since it last looked.
     edits: u64,
+}
+
+/// The bit of predicate `name/arity` in [`FactBase::pred_bits`] (symbols are numbered in
+/// order, so a program's few predicates rarely share a bit).
+#[inline]
+fn pred_bit(name: Sym, arity: u32) -> u64 {
+    1 << (name.0.wrapping_add(arity.wrapping_mul(13)) & 63)
 }
 
 fn pred_of(t: &Term) -> Option<(Sym, u32)> {
@@ -137,7 +147,8 @@ impl FactBase {
     /// whole fact: lets lookups skip bases that cannot hold it).
     #[inline]
     pub fn has_pred(&self, name: Sym, arity: usize) -> bool {
-        !self.preds.is_empty() && self.preds.contains_key(&(name, arity as u32))
+        self.pred_bits & pred_bit(name, arity as u32) != 0
+            && self.preds.contains_key(&(name, arity as u32))
     }
 
     /// Adds a fact (an atom or compound term, normally ground); returns false when it was
@@ -168,6 +179,7 @@ impl FactBase {
         self.entries[id as usize].term = Some(fact);
         let entries = &mut self.entries;
         push_back(entries, self.all.get_or_insert(EMPTY), ALL, id);
+        self.pred_bits |= pred_bit(name, arity);
         push_back(
             entries,
             self.preds.entry((name, arity)).or_insert(EMPTY),
@@ -210,6 +222,7 @@ impl FactBase {
             unlink(entries, l, PRED, id);
             if l.len == 0 {
                 self.preds.remove(&(name, arity));
+                self.pred_bits = self.preds.keys().fold(0, |b, (s, n)| b | pred_bit(*s, *n));
             }
         }
         for (i, (k, map)) in [(ARG1, &mut self.arg1), (ARG2, &mut self.arg2)]
@@ -248,6 +261,7 @@ impl FactBase {
         self.ids.clear();
         self.all = None;
         self.preds.clear();
+        self.pred_bits = 0;
         self.arg1.clear();
         self.arg2.clear();
     }
@@ -281,7 +295,7 @@ impl FactBase {
 
     /// True when the base holds at least one fact of `name/arity`.
     pub fn has_predicate(&self, name: Sym, arity: usize) -> bool {
-        self.preds.contains_key(&(name, arity as u32))
+        self.has_pred(name, arity)
     }
 
     /// The facts of predicate `name/arity` in insertion order.
@@ -420,6 +434,31 @@ mod tests {
         assert!(fb.advance(&mut s).is_none());
         let mut s = fb.scan(p, 2, Some(Key::Int(7)), None);
         assert!(fb.advance(&mut s).is_none());
+    }
+
+    #[test]
+    fn has_pred_follows_inserts_and_deletes_of_many_predicates() {
+        // More predicates than bits in the quick filter: answers must stay exact.
+        let mut fb = FactBase::new();
+        let fact = |i: usize| Term::compound(format!("hp{i}").as_str(), vec![Term::Int(i as i64)]);
+        for i in 0..100 {
+            fb.insert(fact(i));
+        }
+        for i in (0..100).step_by(2) {
+            assert!(fb.delete(&fact(i)));
+        }
+        for i in 0..100 {
+            let name = Sym::intern(&format!("hp{i}"));
+            assert_eq!(fb.has_pred(name, 1), i % 2 == 1, "hp{i}/1");
+            assert!(!fb.has_pred(name, 2), "hp{i}/2");
+        }
+        for i in (1..100).step_by(2) {
+            assert!(fb.delete(&fact(i)));
+        }
+        assert!(!fb.has_pred(Sym::intern("hp1"), 1));
+        fb.insert(fact(7));
+        assert!(fb.has_pred(Sym::intern("hp7"), 1));
+        assert!(!fb.has_pred(Sym::intern("hp9"), 1));
     }
 
     #[test]

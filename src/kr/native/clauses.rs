@@ -9,14 +9,37 @@ use crate::kr::knowledge::{Pred, PredRef};
 use crate::term::{Sym, Term};
 
 /// A clause's first body goal, called right after the clause's head matched, with its
-/// arguments built on the heap without a goal term around them and without a frame.
+/// arguments in the argument registers (or built on the heap) without a goal term around
+/// them and without a frame.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Direct {
     pred: PredRef,
-    /// Heap address of the first argument (the others follow it).
-    args: u32,
+    args: Args,
     next: u32,
     depth: u32,
+}
+
+/// Most arguments a call passes in the argument registers.
+pub(crate) const MAX_REGS: usize = 8;
+
+/// Where the arguments of a call lie.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Args {
+    /// On the heap from this address on (a goal term's arguments, or a built block).
+    Heap(u32),
+    /// In the machine's argument registers: a first body goal whose arguments are variables
+    /// and constants, read from the clause's slots without copying a block to the heap.
+    Regs,
+}
+
+/// The argument registers (see [`Args::Regs`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Regs(pub [Cell; MAX_REGS]);
+
+impl Default for Regs {
+    fn default() -> Self {
+        Regs([UNSET; MAX_REGS])
+    }
 }
 
 impl<'a, 'm> Solver<'a, 'm> {
@@ -57,7 +80,7 @@ impl<'a, 'm> Solver<'a, 'm> {
         };
         match pred {
             Some(PredRef::Builtin(b)) => self.builtin(b, g, p, next, cut, depth),
-            Some(r) => self.call_clauses(r, Some(g), Self::args_of(g), next, depth),
+            Some(r) => self.call_clauses(r, Some(g), Args::Heap(Self::args_of(g)), next, depth),
             None => {
                 let b = self.m.cps.len() as u32;
                 let scan = self.start_scan(0, g, name, arity, p);
@@ -75,17 +98,32 @@ impl<'a, 'm> Solver<'a, 'm> {
         }
     }
 
-    /// The goal `name(args...)` of `arity` arguments from heap address `args` on, built as a
-    /// term (for a choicepoint or a fact scan, which keep the goal).
-    fn goal_at(&mut self, name: Sym, arity: u32, args: u32) -> Cell {
+    /// The goal `name(args...)` of `arity` arguments, built as a term (for a choicepoint or a
+    /// fact scan, which keep the goal).
+    fn goal_at(&mut self, name: Sym, arity: u32, args: Args) -> Cell {
         if arity == 0 {
             return Cell::Atom(name);
         }
-        let heap = &mut self.m.st.heap;
-        let p = heap.len() as u32;
-        heap.push(Cell::Fun(name, arity));
-        heap.extend_from_within(args as usize..(args + arity) as usize);
+        let m = &mut *self.m;
+        let p = m.st.heap.len() as u32;
+        m.st.heap.push(Cell::Fun(name, arity));
+        match args {
+            Args::Heap(a) => {
+                m.st.heap
+                    .extend_from_within(a as usize..(a + arity) as usize)
+            }
+            Args::Regs => m.st.heap.extend_from_slice(&m.regs.0[..arity as usize]),
+        }
         Cell::Ptr(p)
+    }
+
+    /// Argument `i` of a call whose arguments lie at `args`.
+    #[inline]
+    fn arg(m: &super::machine::Machine, args: Args, i: usize) -> Cell {
+        match args {
+            Args::Heap(a) => m.st.heap[a as usize + i],
+            Args::Regs => m.regs.0[i],
+        }
     }
 
     /// Calls the clauses of a clause's first body goal (see [`Direct`]).
@@ -99,20 +137,20 @@ impl<'a, 'm> Solver<'a, 'm> {
         self.call_clauses(d.pred, None, d.args, d.next, d.depth)
     }
 
-    /// Calls the clauses (and goal facts) of predicate `r` on the arguments at heap address
-    /// `args`; `goal` is the goal term when there is one already.
+    /// Calls the clauses (and goal facts) of predicate `r` on the arguments at `args`; `goal`
+    /// is the goal term when there is one already.
     fn call_clauses(
         &mut self,
         r: PredRef,
         mut goal: Option<Cell>,
-        args: u32,
+        mut args: Args,
         next: u32,
         depth: u32,
     ) -> KrResult<bool> {
         let pred = self.pred(r);
         let (name, arity) = (pred.name, pred.arity);
         let key = if arity > 0 {
-            Key::of_cell(&self.m.st, self.m.st.heap[args as usize])
+            Key::of_cell(&self.m.st, Self::arg(self.m, args, 0))
         } else {
             None
         };
@@ -141,6 +179,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                 Cell::Ptr(p) => p,
                 _ => 0,
             };
+            args = Args::Heap(p + 1);
             let stage = self.cx.bases.len() as u32;
             let scan = self.start_scan(stage, g, name, arity, p);
             self.push_choice(
@@ -178,7 +217,7 @@ impl<'a, 'm> Solver<'a, 'm> {
     pub(crate) fn try_clauses(
         &mut self,
         mut goal: Option<Cell>,
-        args: u32,
+        mut args: Args,
         r: PredRef,
         key: Option<Key>,
         pos: u32,
@@ -191,7 +230,7 @@ impl<'a, 'm> Solver<'a, 'm> {
         // The second-argument key is read from the goal on every entry: backtracking restores
         // the bindings of the call, so the candidate list is the same each time.
         let key2 = if key.is_none() && pred.arity >= 2 && pred.has_second_index() {
-            Key::of_cell(&self.m.st, self.m.st.heap[args as usize + 1])
+            Key::of_cell(&self.m.st, Self::arg(self.m, args, 1))
         } else {
             None
         };
@@ -208,7 +247,11 @@ impl<'a, 'm> Solver<'a, 'm> {
             if j < list.len() {
                 let goal = match goal {
                     Some(g) => g,
-                    None => *goal.insert(self.goal_at(pred.name, pred.arity, args)),
+                    None => {
+                        let g = self.goal_at(pred.name, pred.arity, args);
+                        args = Args::Heap(Self::args_of(g));
+                        *goal.insert(g)
+                    }
                 };
                 let alt = Alt::Clauses {
                     goal,
@@ -243,14 +286,14 @@ impl<'a, 'm> Solver<'a, 'm> {
         }
     }
 
-    /// Matches clause `ci`'s head against the arguments at heap address `args` and schedules
+    /// Matches clause `ci`'s head against the arguments at `args` and schedules
     /// its body: the first goal as the next [`Direct`] call when it calls clauses, the others
     /// as frames.
     pub(crate) fn try_clause(
         &mut self,
         pred: &'a Pred,
         ci: u32,
-        args: u32,
+        args: Args,
         next: u32,
         cut: u32,
     ) -> bool {
@@ -259,9 +302,9 @@ impl<'a, 'm> Solver<'a, 'm> {
         m.slots.clear();
         m.slots.resize(cl.nslots as usize, UNSET);
         if let Cell::Ptr(off) = cl.head {
-            let (off, args, n) = (off as usize + 1, args as usize, pred.arity as usize);
+            let (off, n) = (off as usize + 1, pred.arity as usize);
             for (i, &c) in cl.code.cells[off..off + n].iter().enumerate() {
-                let h = m.st.heap[args + i];
+                let h = Self::arg(m, args, i);
                 if !cl.code.unify_arg(&mut m.st, c, h, &mut m.slots) {
                     return false;
                 }
@@ -293,7 +336,32 @@ impl<'a, 'm> Solver<'a, 'm> {
             nx = m.frames.len() as u32 - 1;
         }
         if let Some(pred) = direct {
-            let args = cl.code.build_args(&mut m.st, cl.body[0], &mut m.slots);
+            // Arguments without structures go to the registers (fresh variables are made in
+            // the order a block copy would make them); others are built as a block.
+            let args = match cl.code.flat_args(cl.body[0]) {
+                Some(cells) if cells.len() <= MAX_REGS => {
+                    for (i, &c) in cells.iter().enumerate() {
+                        m.regs.0[i] = match c {
+                            // By value: a copy made field by field and read back whole
+                            // stalls the store-to-load forwarding.
+                            Cell::Ref(k) if (k as usize) < m.slots.len() => {
+                                let v = m.slots[k as usize];
+                                if let Cell::Ref(u32::MAX) = v {
+                                    let v = m.st.new_var();
+                                    m.slots[k as usize] = v;
+                                    v
+                                } else {
+                                    v
+                                }
+                            }
+                            Cell::Atom(_) | Cell::Int(_) | Cell::Flt(_) => c,
+                            _ => cl.code.build(&mut m.st, c, &mut m.slots),
+                        };
+                    }
+                    Args::Regs
+                }
+                _ => Args::Heap(cl.code.build_args(&mut m.st, cl.body[0], &mut m.slots)),
+            };
             self.direct = Some(Direct {
                 pred,
                 args,

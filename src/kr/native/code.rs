@@ -240,6 +240,20 @@ impl Code {
         }
     }
 
+    /// The argument cells of the compiled goal `root` when none of them is a structure (they
+    /// are slots and constants, each built alone); `None` otherwise.
+    #[inline]
+    pub fn flat_args(&self, root: Cell) -> Option<&[Cell]> {
+        match root {
+            Cell::Ptr(off) => {
+                let (from, end) = (off as usize + 1, self.ends[off as usize] as usize);
+                let n = self.cells[off as usize].fun().map_or(0, |f| f.1 as usize);
+                (end - from == n).then(|| &self.cells[from..end])
+            }
+            _ => Some(&[]),
+        }
+    }
+
     /// Copies cells `from..end` of this code to the top of the heap, then rewrites the cells
     /// that mean something else on the heap (slots, offsets, string indices); returns the heap
     /// address of the first copied cell.
@@ -250,13 +264,13 @@ impl Code {
         heap.extend_from_slice(&self.cells[from as usize..end as usize]);
         for (a, c) in (base..).zip(&mut heap[base as usize..]) {
             match *c {
+                // A set slot's value is copied whole (see `Solver::try_clause`).
                 Cell::Ref(k) => {
-                    *c = match slots.get_mut(k as usize) {
-                        Some(s) => {
-                            if let Cell::Ref(u32::MAX) = *s {
-                                *s = Cell::Ref(a);
-                            }
-                            *s
+                    *c = match slots.get(k as usize) {
+                        Some(&v) if !matches!(v, Cell::Ref(u32::MAX)) => v,
+                        Some(_) => {
+                            slots[k as usize] = Cell::Ref(a);
+                            Cell::Ref(a)
                         }
                         None => Cell::Ref(a),
                     }

@@ -13,6 +13,7 @@ const SHALLOW_DEPTH: u32 = 4;
 
 impl<'a> Solver<'a, '_> {
     /// Starts scanning fact source `stage` (a fact base, or the goal facts after the last base).
+    #[inline]
     pub(crate) fn start_scan(&self, stage: u32, _g: Cell, name: Sym, arity: u32, p: u32) -> Scan {
         if (stage as usize) < self.cx.bases.len() {
             let base = self.cx.bases[stage as usize];
@@ -42,8 +43,14 @@ impl<'a> Solver<'a, '_> {
         }
     }
 
-    /// The next fact that may match `g`, advancing through the sources.
-    pub(crate) fn next_fact(&self, g: Cell, stage: &mut u32, scan: &mut Scan) -> Option<&'a Term> {
+    /// The next fact that may match `g`, advancing through the sources; with it, the position
+    /// (stage and scan) that yields it again at once.
+    pub(crate) fn next_fact(
+        &self,
+        g: Cell,
+        stage: &mut u32,
+        scan: &mut Scan,
+    ) -> Option<(&'a Term, u32, Scan)> {
         let (name, arity, p) = match g {
             Cell::Atom(s) => (s, 0, 0),
             Cell::Ptr(p) => match self.m.st.heap[p as usize] {
@@ -55,18 +62,20 @@ impl<'a> Solver<'a, '_> {
         let nb = self.cx.bases.len() as u32;
         loop {
             if *stage < nb {
+                let at = *scan;
                 if let Some(t) = self.cx.bases[*stage as usize].advance(scan) {
-                    return Some(t);
+                    return Some((t, *stage, at));
                 }
                 *stage += 1;
                 *scan = self.start_scan(*stage, g, name, arity, p);
             } else {
                 let facts = self.cx.goal_facts;
                 while (scan.next as usize) < facts.len() {
+                    let at = *scan;
                     let t = &facts[scan.next as usize];
                     scan.next += 1;
                     if t.functor() == Some((name, arity as usize)) {
-                        return Some(t);
+                        return Some((t, *stage, at));
                     }
                 }
                 return None;
@@ -83,7 +92,7 @@ impl<'a> Solver<'a, '_> {
         mut has_choice: bool,
         next: u32,
     ) -> KrResult<bool> {
-        let mut cand = self.next_fact(goal, &mut stage, &mut scan);
+        let mut cand = self.next_fact(goal, &mut stage, &mut scan).map(|f| f.0);
         loop {
             let Some(t) = cand else {
                 if has_choice {
@@ -91,13 +100,14 @@ impl<'a> Solver<'a, '_> {
                 }
                 return Ok(false);
             };
-            let (s0, sc0) = (stage, scan);
+            // Looking ahead decides on a choicepoint; the choicepoint resumes at the fact
+            // found, so backtracking does not walk the sources passed over again.
             let after = self.next_fact(goal, &mut stage, &mut scan);
-            if after.is_some() {
+            if let Some((_, s_at, sc_at)) = after {
                 let alt = Alt::Facts {
                     goal,
-                    stage: s0,
-                    scan: sc0,
+                    stage: s_at,
+                    scan: sc_at,
                 };
                 if has_choice {
                     self.m.cps[b as usize].alt = alt;
@@ -121,7 +131,7 @@ impl<'a> Solver<'a, '_> {
             self.m.st.undo(tm);
             self.m.st.heap.truncate(hm);
             self.m.st.strs.truncate(sm);
-            cand = after;
+            cand = after.map(|f| f.0);
         }
     }
 

@@ -3,7 +3,7 @@
 //! Nothing here recurses with the proof depth or the term depth.
 
 use super::budget::CHECK_EVERY;
-use super::clauses::Direct;
+use super::clauses::{Args, Direct, Regs};
 use super::code::{Code, Key, UNSET};
 use super::store::{Cell, Store, VarNames};
 use crate::kr::error::{KrError, KrResult, Limits};
@@ -121,6 +121,8 @@ pub(crate) struct Machine {
     pub cps: Vec<Choice>,
     pub bags: Vec<Bag>,
     pub slots: Vec<Cell>,
+    /// The argument registers of the next [`Direct`] call.
+    pub regs: Regs,
     pub arith: super::arith::ArithStacks,
 }
 
@@ -492,7 +494,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                     key,
                     pos,
                 } => {
-                    let args = Self::args_of(goal);
+                    let args = Args::Heap(Self::args_of(goal));
                     if self.try_clauses(
                         Some(goal),
                         args,
