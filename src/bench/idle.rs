@@ -5,7 +5,7 @@
 use super::report::Target;
 use super::{file, rss, Params, Report};
 use crate::agent::{Agent, AgentConfig, Program, TraceLevel};
-use crate::mas::scheduler::{Inbox, Job, Pool};
+use crate::mas::scheduler::{Job, Pool};
 use std::time::Instant;
 
 /// `agents`: creation time and memory of `agents` idle agents.
@@ -33,7 +33,7 @@ pub fn run(params: &Params, workers: usize) -> Result<Report, String> {
     let pool = Pool::new(agents, workers).map_err(|e| e.0)?;
     let create = t0.elapsed();
     let t1 = Instant::now();
-    let jobs: Vec<Job> = (0..n).map(|i| (i, Vec::new(), Inbox::new())).collect();
+    let jobs: Vec<Job> = (0..n).map(|i| (i, Vec::new(), Vec::new())).collect();
     let outs = pool.round(jobs, None).map_err(|e| e.0)?;
     let run = t1.elapsed();
     let after = rss::current_kib();

@@ -10,7 +10,7 @@ mod start;
 use super::environment::{env_params, percept_types};
 use super::launch::{agent_seed, Launch, Launcher};
 use super::routing::Router;
-use super::scheduler::{Inbox, Job, Pool};
+use super::scheduler::{Job, Pool};
 use super::stats::{AgentStats, Deliveries, EndReason, RunSummary};
 use super::system::{MasSystem, Problem};
 use super::trace::{AgentInfo, TraceWriter};
@@ -60,7 +60,7 @@ struct Slot {
     /// The agent's last cycle left it waiting for new input (see `CycleOutput::waiting`).
     waiting: bool,
     percepts: Vec<Term>,
-    inbox: Inbox,
+    inbox: Vec<Message>,
     /// In the ready queue (something new for the next round).
     queued: bool,
     /// Rounds before this one are accounted in `stats.idle_ticks`.

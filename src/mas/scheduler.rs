@@ -18,7 +18,6 @@
 use crate::agent::{Agent, CycleOutput, Message};
 use crate::term::Term;
 use crossbeam_channel::{unbounded, Receiver, RecvError, Sender, TryRecvError};
-use smallvec::SmallVec;
 use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
@@ -46,12 +45,7 @@ fn wait<T>(rx: &Receiver<T>) -> Result<T, RecvError> {
 }
 
 /// One cycle to run: agent index, percept batch, incoming messages.
-pub type Job = (usize, Vec<Term>, Inbox);
-
-/// The messages an agent receives in one round. Most agents receive at most one per round
-/// (a token ring, a request and its answer): that one is held inline, so delivering it
-/// allocates nothing on the run loop's thread and frees nothing on the worker's.
-pub type Inbox = SmallVec<[Message; 1]>;
+pub type Job = (usize, Vec<Term>, Vec<Message>);
 
 type Done = Vec<(usize, CycleOutput)>;
 
@@ -482,7 +476,7 @@ mod tests {
             let jobs = || {
                 (0..n)
                     .filter(|i| round % 2 == 0 || i % 3 == 1 || *i > 17)
-                    .map(|i| (i, Vec::new(), Inbox::new()))
+                    .map(|i| (i, Vec::new(), Vec::new()))
                     .collect::<Vec<Job>>()
             };
             let mut a = Vec::new();
@@ -499,7 +493,7 @@ mod tests {
     #[test]
     fn each_thread_owns_a_contiguous_range_and_the_parts_cover_every_job_once() {
         let jobs = |ids: &[usize]| -> Vec<Job> {
-            ids.iter().map(|&i| (i, Vec::new(), Inbox::new())).collect()
+            ids.iter().map(|&i| (i, Vec::new(), Vec::new())).collect()
         };
         let bounds = |p: &[Part]| -> Vec<(usize, usize)> {
             p.iter()
@@ -530,7 +524,7 @@ mod tests {
         let pool = Pool::new(agents(n), 1).expect("pool");
         let jobs = || {
             (0..n)
-                .map(|i| (i, Vec::new(), Inbox::new()))
+                .map(|i| (i, Vec::new(), Vec::new()))
                 .collect::<Vec<Job>>()
         };
         // A round split for three threads, of which only the calling thread (0) ever runs.

@@ -96,7 +96,7 @@ impl<'a> Setup<'a> {
                 },
                 waiting: false,
                 percepts: Vec::new(),
-                inbox: Inbox::new(),
+                inbox: Vec::new(),
                 queued: true,
                 counted: 0,
             });
