@@ -59,17 +59,33 @@ struct Part {
     end: usize,
 }
 
-/// A round shared between threads: its jobs (in agent-index order), each thread's part of
-/// them, and what came out.
+/// A round shared between threads: its cycles (in agent-index order), each thread's part of
+/// them, and how far it got.
 struct Round {
     clock: Option<f64>,
-    jobs: Vec<Mutex<Option<Job>>>,
+    /// Each cycle of the round: its job until a thread claims it, then its output. Outputs stay
+    /// in place, so the round's result is read in job order without collecting or sorting.
+    cells: Vec<Mutex<Cycle>>,
     /// Part `t` holds the jobs of the agents thread `t` owns (see [`owner`]).
     parts: Vec<Part>,
-    /// Jobs finished (mirrors `collected.finished`, read while spinning).
+    /// Jobs finished (mirrors `ended.finished`, read while spinning).
     finished: AtomicUsize,
-    collected: Mutex<Collected>,
+    ended: Mutex<Ended>,
     all_done: Condvar,
+}
+
+/// One cycle of a shared round.
+enum Cycle {
+    Job(Job),
+    Done(usize, CycleOutput),
+    /// Claimed, or its output taken (or its agent failed: see [`Ended::error`]).
+    Empty,
+}
+
+impl Cycle {
+    fn take(&mut self) -> Cycle {
+        std::mem::replace(self, Cycle::Empty)
+    }
 }
 
 /// The thread (of `threads`) that owns agent `i` of `agents`: contiguous ranges of agents.
@@ -99,19 +115,38 @@ fn parts(jobs: &[Job], agents: usize, threads: usize) -> Vec<Part> {
         .collect()
 }
 
-/// The outputs of a shared round so far.
+/// How many cycles of a shared round have finished, and the first failure.
 #[derive(Default)]
-struct Collected {
-    outputs: Done,
+struct Ended {
     finished: usize,
     error: Option<PoolError>,
 }
 
+/// Locks `m`, also after a panic while it was held: nothing here panics holding these locks
+/// (agent panics are caught inside [`run_one`]), and the data stays whole either way.
+fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 impl Round {
+    /// A round of the `jobs` (sorted by agent index, taken out) for `threads` threads over
+    /// `agents` agents, with the agents' clocks at `clock`.
+    fn new(jobs: &mut Vec<Job>, clock: Option<f64>, agents: usize, threads: usize) -> Round {
+        let parts = parts(jobs, agents, threads);
+        let cells = jobs.drain(..).map(|j| Mutex::new(Cycle::Job(j))).collect();
+        Round {
+            clock,
+            cells,
+            parts,
+            finished: AtomicUsize::new(0),
+            ended: Mutex::new(Ended::default()),
+            all_done: Condvar::new(),
+        }
+    }
+
     /// Thread `me` runs claimed chunks of its own part of the round, then of the other parts,
-    /// until none is left; what came out is handed over once, at the end.
+    /// until none is left; each output goes back into its job's cell.
     fn work(&self, agents: &[Mutex<Agent>], me: usize) {
-        let mut done = Vec::new();
         let mut error = None;
         let mut count = 0;
         let n = self.parts.len();
@@ -122,12 +157,17 @@ impl Round {
                     break;
                 }
                 let to = (from + CHUNK).min(part.end);
-                let jobs: Vec<Job> = self.jobs[from..to]
-                    .iter()
-                    .filter_map(|j| j.lock().ok().and_then(|mut j| j.take()))
-                    .collect();
-                if let Err(e) = step(agents, self.clock, jobs, &mut done) {
-                    error.get_or_insert(e);
+                for cell in &self.cells[from..to] {
+                    let Cycle::Job(job) = lock(cell).take() else {
+                        continue;
+                    };
+                    let i = job.0;
+                    match run_one(agents, self.clock, job) {
+                        Ok(out) => *lock(cell) = Cycle::Done(i, out),
+                        Err(e) => {
+                            error.get_or_insert(e);
+                        }
+                    }
                 }
                 count += to - from;
             }
@@ -135,34 +175,42 @@ impl Round {
         if count == 0 {
             return;
         }
-        // A poisoned lock can only come from a panic while it was held, which nothing here
-        // does; the outputs are taken all the same.
-        let mut c = self.collected.lock().unwrap_or_else(|e| e.into_inner());
-        c.outputs.append(&mut done);
-        if let Some(e) = error {
-            c.error.get_or_insert(e);
+        let mut e = lock(&self.ended);
+        if let Some(err) = error {
+            e.error.get_or_insert(err);
         }
-        c.finished += count;
-        self.finished.store(c.finished, Ordering::Release);
-        if c.finished == self.jobs.len() {
+        e.finished += count;
+        self.finished.store(e.finished, Ordering::Release);
+        if e.finished == self.cells.len() {
             self.all_done.notify_all();
         }
     }
 
-    /// Waits (spinning first) until every job of the round has finished; returns what came out.
-    fn wait(&self) -> Collected {
-        let n = self.jobs.len();
+    /// Waits (spinning first) until every job of the round has finished; then appends the
+    /// outputs, in job order, to `out`.
+    fn wait(&self, out: &mut Done) -> Result<(), PoolError> {
+        let n = self.cells.len();
         let start = Instant::now();
         while self.finished.load(Ordering::Acquire) < n && start.elapsed() < SPIN {
             for _ in 0..64 {
                 std::hint::spin_loop();
             }
         }
-        let mut c = self.collected.lock().unwrap_or_else(|e| e.into_inner());
-        while c.finished < n {
-            c = self.all_done.wait(c).unwrap_or_else(|e| e.into_inner());
+        let mut e = lock(&self.ended);
+        while e.finished < n {
+            e = self.all_done.wait(e).unwrap_or_else(|e| e.into_inner());
         }
-        std::mem::take(&mut *c)
+        if let Some(err) = e.error.take() {
+            return Err(err);
+        }
+        drop(e);
+        out.reserve(n);
+        for cell in &self.cells {
+            if let Cycle::Done(i, o) = lock(cell).take() {
+                out.push((i, o));
+            }
+        }
+        Ok(())
     }
 }
 
@@ -238,23 +286,33 @@ fn step(
     jobs: impl IntoIterator<Item = Job>,
     done: &mut Done,
 ) -> Result<(), PoolError> {
-    for (i, percepts, messages) in jobs {
-        let cell = agents
-            .get(i)
-            .ok_or_else(|| PoolError(format!("no agent with index {i}")))?;
-        let mut a = cell
-            .lock()
-            .map_err(|_| PoolError("an agent panicked in an earlier round".into()))?;
-        // A panic in an agent is a bug; report it as a failed round instead of unwinding
-        // through the run loop.
-        let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            a.set_clock(clock);
-            a.step(&percepts, &messages)
-        }))
-        .map_err(|_| PoolError(format!("agent {i} panicked")))?;
-        done.push((i, out));
+    for job in jobs {
+        let i = job.0;
+        done.push((i, run_one(agents, clock, job)?));
     }
     Ok(())
+}
+
+/// Runs one cycle of `job` on this thread with the agent's clock at `clock`.
+#[inline]
+fn run_one(
+    agents: &[Mutex<Agent>],
+    clock: Option<f64>,
+    (i, percepts, messages): Job,
+) -> Result<CycleOutput, PoolError> {
+    let cell = agents
+        .get(i)
+        .ok_or_else(|| PoolError(format!("no agent with index {i}")))?;
+    let mut a = cell
+        .lock()
+        .map_err(|_| PoolError("an agent panicked in an earlier round".into()))?;
+    // A panic in an agent is a bug; report it as a failed round instead of unwinding
+    // through the run loop.
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        a.set_clock(clock);
+        a.step(&percepts, &messages)
+    }))
+    .map_err(|_| PoolError(format!("agent {i} panicked")))
 }
 
 impl Pool {
@@ -328,7 +386,7 @@ impl Pool {
                 self.costs.record(false, start.elapsed(), cycles);
             }
         } else {
-            *out = self.shared(std::mem::take(jobs), clock)?;
+            self.shared(jobs, clock, out)?;
             self.costs.record(true, start.elapsed(), cycles);
         }
         // Usually in order already (jobs come in agent order): then a single pass.
@@ -336,28 +394,21 @@ impl Pool {
         Ok(())
     }
 
-    /// Runs a round on every thread: each takes cycles until none is left. The outputs come
-    /// back in no particular order.
-    fn shared(&self, jobs: Vec<Job>, clock: Option<f64>) -> Result<Done, PoolError> {
-        let parts = parts(&jobs, self.agents.len(), self.workers());
-        let shared = Arc::new(Round {
-            clock,
-            jobs: jobs.into_iter().map(|j| Mutex::new(Some(j))).collect(),
-            parts,
-            finished: AtomicUsize::new(0),
-            collected: Mutex::new(Collected::default()),
-            all_done: Condvar::new(),
-        });
+    /// Runs a round on every thread: each takes cycles until none is left. The outputs are
+    /// appended to `out` in job order.
+    fn shared(
+        &self,
+        jobs: &mut Vec<Job>,
+        clock: Option<f64>,
+        out: &mut Done,
+    ) -> Result<(), PoolError> {
+        let round = Arc::new(Round::new(jobs, clock, self.agents.len(), self.workers()));
         // A worker that stopped only leaves more of the round to the calling thread.
         for w in &self.workers {
-            let _ = w.tx.send(shared.clone());
+            let _ = w.tx.send(round.clone());
         }
-        shared.work(&self.agents, 0);
-        let c = shared.wait();
-        match c.error {
-            Some(e) => Err(e),
-            None => Ok(c.outputs),
-        }
+        round.work(&self.agents, 0);
+        round.wait(out)
     }
 }
 
@@ -430,8 +481,8 @@ mod tests {
             };
             let mut a = Vec::new();
             step(&alone.agents, None, jobs(), &mut a).expect("round");
-            let mut b = shared.shared(jobs(), None).expect("round");
-            b.sort_by_key(|(i, _)| *i);
+            let mut b = Vec::new();
+            shared.shared(&mut jobs(), None, &mut b).expect("round");
             let (a, b) = (printed(a), printed(b));
             assert_eq!(a, b, "round {round}");
             assert_eq!(b.len(), jobs().len());
@@ -477,20 +528,13 @@ mod tests {
                 .collect::<Vec<Job>>()
         };
         // A round split for three threads, of which only the calling thread (0) ever runs.
-        let round = Round {
-            clock: None,
-            parts: parts(&jobs(), n, 3),
-            jobs: jobs().into_iter().map(|j| Mutex::new(Some(j))).collect(),
-            finished: AtomicUsize::new(0),
-            collected: Mutex::new(Collected::default()),
-            all_done: Condvar::new(),
-        };
+        let round = Round::new(&mut jobs(), None, n, 3);
         round.work(&pool.agents, 0);
-        let mut c = round.wait();
-        c.outputs.sort_by_key(|(i, _)| *i);
+        let mut b = Vec::new();
+        round.wait(&mut b).expect("round");
         let mut a = Vec::new();
         step(&alone.agents, None, jobs(), &mut a).expect("round");
-        assert_eq!(printed(c.outputs), printed(a));
+        assert_eq!(printed(b), printed(a));
         // A thread that comes late finds nothing left and changes nothing.
         round.work(&pool.agents, 2);
         assert_eq!(round.finished.load(Ordering::Relaxed), n);
