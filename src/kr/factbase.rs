@@ -208,6 +208,22 @@ impl FactBase {
         let Some(id) = self.ids.remove(fact) else {
             return false;
         };
+        self.unlink_fact(fact, id)
+    }
+
+    /// Removes the fact `q` stands for, found without building it (see
+    /// [`FactBase::contains_instance`]), and hands it back; `None` when it was not present.
+    pub fn take_instance<Q: Hash + Equivalent<Term>>(&mut self, q: &Q) -> Option<Term> {
+        if self.ids.is_empty() {
+            return None;
+        }
+        let (fact, id) = self.ids.remove_entry(q)?;
+        self.unlink_fact(&fact, id);
+        Some(fact)
+    }
+
+    /// Takes the entry `id` of `fact` (already out of `ids`) off every list.
+    fn unlink_fact(&mut self, fact: &Term, id: u32) -> bool {
         self.edits += 1;
         let Some((name, arity)) = pred_of(fact) else {
             return false;

@@ -379,7 +379,9 @@ impl<'a> Run<'a> {
             Term::Var(v) => match self.vals[self.slot(*v)] {
                 None => Ok(false),
                 Some(Val::I(_)) => Ok(true),
-                Some(Val::T(t)) if has_float(t) => Err(Halt::Bail),
+                Some(Val::T(Term::Float(_))) => Err(Halt::Bail),
+                // Only a compound value is walked for floats.
+                Some(Val::T(t @ Term::Compound(_))) if has_float(t) => Err(Halt::Bail),
                 Some(Val::T(_)) => Ok(true),
             },
             Term::Compound(c) => {
