@@ -139,4 +139,29 @@ mod tests {
             "an unbound variable equals nothing"
         );
     }
+
+    #[test]
+    fn a_fact_base_finds_and_removes_the_fact_an_instance_stands_for() {
+        use crate::kr::factbase::FactBase;
+        let x = Sym::intern("X");
+        let fact = |i: i64| Term::compound("seen", vec![Term::Int(i), Term::atom("b")]);
+        let mut base = FactBase::new();
+        for i in 0..3 {
+            base.insert(fact(i));
+        }
+        let pattern = Term::compound("seen", vec![Term::Var(x), Term::atom("b")]);
+        let one = Instance::new(&pattern, |_| Some(Value::Int(1)));
+        let nine = Instance::new(&pattern, |_| Some(Value::Int(9)));
+        assert!(base.contains_instance(&one));
+        assert!(!base.contains_instance(&nine));
+        assert_eq!(base.take_instance(&nine), None);
+        let edits = base.edits();
+        assert_eq!(base.take_instance(&one), Some(fact(1)));
+        assert_eq!(base.edits(), edits + 1, "one edit, as a delete");
+        assert!(!base.contains(&fact(1)));
+        let rest: Vec<String> = base.iter().map(|f| f.to_string()).collect();
+        assert_eq!(rest, ["seen(0,b)", "seen(2,b)"]);
+        let seen = Sym::intern("seen");
+        assert_eq!(base.facts_of(seen, 2).count(), 2, "gone from the index too");
+    }
 }
