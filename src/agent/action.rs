@@ -303,11 +303,7 @@ fn belief_instance<'a>(
     let mut stack: SmallVec<[&Term; 8]> = smallvec![t];
     while let Some(x) = stack.pop() {
         match x {
-            Term::Var(v) => {
-                if !s.get(*v).is_some_and(Term::is_ground) {
-                    return None;
-                }
-            }
+            Term::Var(v) if !s.get(*v).is_some_and(Term::is_ground) => return None,
             Term::Compound(c) => stack.extend(c.args.iter()),
             _ => {}
         }
