@@ -198,12 +198,7 @@ impl Mailbox {
     }
 
     /// Moves the held `sent/2` facts into the fact base, in the order they were sent.
-    #[inline]
     pub fn settle(&mut self) {
-        // Called before most actions and rules: usually nothing is held, and no drain is set up.
-        if self.held.is_empty() {
-            return;
-        }
         // Drained, not taken: the buffer is kept for the next combo's sends.
         for (r, c) in self.held.drain(..) {
             self.facts.insert(sent(&Term::Atom(r), &c));
