@@ -1038,3 +1038,28 @@ fn goal_checks_after_updates_see_knowledge_percepts_and_conjunctions() {
     assert_eq!(beliefs(&a), ["count(2)", "on(a,b)", "on(b,c)", "seen"]);
     assert_eq!(goals(&a), ["keep(1)", "keep(2)"]);
 }
+
+#[test]
+fn delete_removes_the_fact_its_bindings_name_and_reports_it() {
+    let mut a = agent(
+        "init module { beliefs { seen(1, a). seen(2, b). seen(3, a). count(f(1)). } }
+         main module { program {
+            forall bel(seen(X, a)) do delete(seen(X, a)).
+            if bel(count(C)) then delete(count(C)) + delete(seen(9, z)) + insert(done).
+            if bel(done, seen(X, Y)) then print(X-Y) + exit-module. } }",
+    );
+    let outs = run(&mut a, 3);
+    let shown = |o: &goal::agent::CycleOutput| format!("{:?}", o.events);
+    let first = shown(&outs[0]);
+    for fact in ["seen(1,a)", "seen(3,a)"] {
+        assert!(first.contains(&format!("BeliefDeleted {{ fact: \"{fact}\" }}")));
+        assert!(first.contains(&format!("action: \"delete({fact})\"")));
+    }
+    let second = shown(&outs[1]);
+    assert!(second.contains("BeliefDeleted { fact: \"count(f(1))\" }"));
+    // A fact not believed is no change, but the delete is performed.
+    assert!(!second.contains("BeliefDeleted { fact: \"seen(9,z)\" }"));
+    assert!(second.contains("action: \"delete(seen(9,z))\""));
+    assert_eq!(printed(&outs), ["2-b"]);
+    assert_eq!(beliefs(&a), ["done", "seen(2,b)"]);
+}

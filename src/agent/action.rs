@@ -5,11 +5,14 @@ use super::condition::{compose, show_subst};
 use super::cycle::Core;
 use super::error::Fault;
 use super::goals::Goal;
+use super::mailbox::is_mail_fact;
 use super::program::{Act, Program, SpecDef};
 use super::trace::{Event, TraceLevel};
 use super::watch::Observed;
-use crate::term::{print::Style, Subst, Term};
+use crate::term::instance::{Instance, Value};
+use crate::term::{print::Style, well_known as wk, Subst, Sym, Term};
 use rand::Rng;
+use smallvec::{smallvec, SmallVec};
 
 /// What happened when an action was tried.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -42,6 +45,15 @@ impl Core {
                         }]);
                     }
                     self.done_with(|| Term::compound("delete", vec![f.term()]));
+                    self.check_goals()?;
+                    return Ok(Outcome::Done { real: true });
+                }
+                if let Some(inst) = belief_instance(t, s) {
+                    // One belief, ground under `s`: found and removed in place, never built.
+                    let mut ev = Vec::new();
+                    self.ms.delete_belief_instance(&inst, &mut ev);
+                    self.changes(ev);
+                    self.done_with(|| Term::compound("delete", vec![s.apply(t)]));
                     self.check_goals()?;
                     return Ok(Outcome::Done { real: true });
                 }
@@ -275,6 +287,28 @@ impl Core {
 /// Facts printed one per line (for `log(bb)` and friends).
 fn join<'a>(facts: impl Iterator<Item = &'a Term>) -> String {
     facts.map(|f| f.to_string()).collect::<Vec<_>>().join("\n")
+}
+
+/// The fact `t` stands for under `s`, when `t` is one fact pattern of the beliefs (no
+/// conjunction, negation, `true` or mail fact) whose every variable `s` binds to a ground
+/// term; `None`: build the instance and let the mental state check it.
+fn belief_instance<'a>(
+    t: &'a Term,
+    s: &'a Subst,
+) -> Option<Instance<'a, impl Fn(Sym) -> Option<Value<'a>> + 'a>> {
+    let (name, arity) = t.functor()?;
+    if matches!((name, arity), (wk::COMMA, 2) | (wk::NOT, 1) | (wk::TRUE, 0)) || is_mail_fact(t) {
+        return None;
+    }
+    let mut stack: SmallVec<[&Term; 8]> = smallvec![t];
+    while let Some(x) = stack.pop() {
+        match x {
+            Term::Var(v) if !s.get(*v).is_some_and(Term::is_ground) => return None,
+            Term::Compound(c) => stack.extend(c.args.iter()),
+            _ => {}
+        }
+    }
+    Some(Instance::new(t, move |v| s.get(v).map(Value::Term)))
 }
 
 fn ground(s: &Subst, t: &Term, what: &str) -> Result<Term, Fault> {

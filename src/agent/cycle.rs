@@ -204,14 +204,14 @@ impl Core {
             // Nothing to replace or remove: most cycles of agents without an environment.
             return;
         }
-        let ch = self.ms.percepts.apply(percepts, types, keep_batch);
         let record = self.level >= TraceLevel::Changes;
-        for p in ch.removed.iter().filter(|_| record) {
+        let ch = self.ms.percepts.apply(percepts, types, keep_batch, record);
+        for p in ch.removed.iter() {
             self.event(Event::PerceptRemoved {
                 percept: p.to_string(),
             });
         }
-        for p in ch.added.iter().filter(|_| record) {
+        for p in ch.added.iter() {
             self.event(Event::PerceptAdded {
                 percept: p.to_string(),
             });
@@ -219,7 +219,12 @@ impl Core {
     }
 
     /// Records several events.
+    #[inline]
     pub fn changes(&mut self, events: Vec<Event>) {
+        // Most updates report nothing when the trace is off: no loop, no drop to call.
+        if events.is_empty() {
+            return;
+        }
         for e in events {
             self.event(e);
         }

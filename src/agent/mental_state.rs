@@ -576,6 +576,20 @@ impl MentalState {
         }
     }
 
+    /// Removes the belief `q` stands for, found without building it (see
+    /// [`FactBase::take_instance`]): as deleting that ground fact, which must be no mail fact.
+    pub fn delete_belief_instance<Q>(&mut self, q: &Q, events: &mut Vec<Event>)
+    where
+        Q: std::hash::Hash + hashbrown::Equivalent<Term>,
+    {
+        if let Some(f) = self.beliefs.take_instance(q) {
+            self.mark_belief_edit(None);
+            self.record_into(events, || Event::BeliefDeleted {
+                fact: f.to_string(),
+            });
+        }
+    }
+
     fn remove_fact(&mut self, f: &Term, events: &mut Vec<Event>) {
         if is_mail_fact(f) {
             if self.mailbox.delete(f) {

@@ -91,12 +91,14 @@ impl PerceptBase {
         self.facts.contains(&wrap(p))
     }
 
-    /// Applies one batch according to the types.
+    /// Applies one batch according to the types; the changes are listed only when `record`
+    /// asks for them (the trace records them).
     pub fn apply(
         &mut self,
         batch: &[Term],
         types: &PerceptTypes,
         keep_batch: bool,
+        record: bool,
     ) -> PerceptChanges {
         let mut ch = PerceptChanges::default();
         if !self.batch.is_empty() {
@@ -121,14 +123,16 @@ impl PerceptBase {
         if self.replaced_whole(&positive, types) {
             // The common case of an environment that resends everything: no stored fact
             // survives, so empty the base at once instead of finding and deleting each.
-            ch.removed
-                .extend(self.facts.iter().map(|f| f.args()[0].clone()));
+            if record {
+                ch.removed
+                    .extend(self.facts.iter().map(|f| f.args()[0].clone()));
+            }
             self.facts.delete_all();
         } else if !self.facts.is_empty() {
-            self.remove_stale(&positive, types, &mut ch);
+            self.remove_stale(&positive, types, record.then_some(&mut ch));
         }
         for n in negative {
-            if self.facts.delete(&wrap(n)) {
+            if self.facts.delete(&wrap(n)) && record {
                 ch.removed.push(n.clone());
             }
         }
@@ -136,9 +140,9 @@ impl PerceptBase {
             self.batch.insert(wrap(p));
         }
         for w in positive {
-            let p = w.args()[0].clone();
+            let p = record.then(|| w.args()[0].clone());
             if self.facts.insert(w) {
-                ch.added.push(p);
+                ch.added.extend(p);
             }
         }
         ch
@@ -157,7 +161,12 @@ impl PerceptBase {
 
     /// Removes the facts the batch replaces: all `Always` ones and the `OnChange` ones whose
     /// predicate the batch mentions, unless the batch sends them again.
-    fn remove_stale(&mut self, positive: &[Term], types: &PerceptTypes, ch: &mut PerceptChanges) {
+    fn remove_stale(
+        &mut self,
+        positive: &[Term],
+        types: &PerceptTypes,
+        mut ch: Option<&mut PerceptChanges>,
+    ) {
         let in_batch: FxHashSet<&Term> = positive.iter().collect();
         // Membership only (never reaches output), so ordering by id is harmless here.
         let mut mentioned: Vec<(Sym, usize)> = positive
@@ -182,7 +191,9 @@ impl PerceptBase {
             .collect();
         for f in stale {
             self.facts.delete(&f);
-            ch.removed.push(f.args()[0].clone());
+            if let Some(ch) = ch.as_deref_mut() {
+                ch.removed.push(f.args()[0].clone());
+            }
         }
     }
 }
@@ -207,27 +218,45 @@ mod tests {
     fn an_always_batch_replaces_stale_facts_and_keeps_repeated_ones_in_place() {
         let types = PerceptTypes::default();
         let mut base = PerceptBase::default();
-        base.apply(&[t("at", "r1"), t("seen", "a")], &types, false);
+        base.apply(&[t("at", "r1"), t("seen", "a")], &types, false, true);
         let edits = base.facts().edits();
         // Nothing repeated: the whole base goes, removals in stored order.
-        let ch = base.apply(&[t("seen", "b"), t("at", "r2")], &types, false);
+        let ch = base.apply(&[t("seen", "b"), t("at", "r2")], &types, false, true);
         assert_eq!(ch.removed, vec![t("at", "r1"), t("seen", "a")]);
         assert_eq!(ch.added, vec![t("seen", "b"), t("at", "r2")]);
         assert_eq!(shown(&base), ["percept(seen(b))", "percept(at(r2))"]);
         assert_eq!(base.facts().edits(), edits + 4, "one edit per change");
         // One fact repeated: it stays where it was, the new one goes after it.
-        let ch = base.apply(&[t("seen", "c"), t("at", "r2")], &types, false);
+        let ch = base.apply(&[t("seen", "c"), t("at", "r2")], &types, false, true);
         assert_eq!(ch.removed, vec![t("seen", "b")]);
         assert_eq!(ch.added, vec![t("seen", "c")]);
         assert_eq!(shown(&base), ["percept(at(r2))", "percept(seen(c))"]);
     }
 
     #[test]
+    fn changes_are_listed_only_when_recorded_and_the_base_is_the_same() {
+        let types = PerceptTypes::new([(("in".to_string(), 1), PerceptType::OnChangeNeg)]);
+        let batches = [
+            vec![t("at", "r1"), t("in", "a")],
+            vec![t("at", "r2"), t("in", "a")],
+            vec![t("at", "r3"), not(t("in", "a"))],
+        ];
+        let (mut quiet, mut loud) = (PerceptBase::default(), PerceptBase::default());
+        for b in &batches {
+            let ch = quiet.apply(b, &types, false, false);
+            assert!(ch.added.is_empty() && ch.removed.is_empty());
+            let ch = loud.apply(b, &types, false, true);
+            assert!(!ch.added.is_empty() || !ch.removed.is_empty());
+            assert_eq!(shown(&quiet), shown(&loud));
+        }
+    }
+
+    #[test]
     fn a_batch_keeps_once_percepts_it_does_not_repeat() {
         let types = PerceptTypes::new([(("color".to_string(), 1), PerceptType::Once)]);
         let mut base = PerceptBase::default();
-        base.apply(&[t("color", "red"), t("at", "r1")], &types, false);
-        let ch = base.apply(&[t("at", "r2")], &types, false);
+        base.apply(&[t("color", "red"), t("at", "r1")], &types, false, true);
+        let ch = base.apply(&[t("at", "r2")], &types, false, true);
         assert_eq!(ch.removed, vec![t("at", "r1")]);
         assert_eq!(shown(&base), ["percept(color(red))", "percept(at(r2))"]);
     }
@@ -236,9 +265,9 @@ mod tests {
     fn a_negated_percept_is_visible_for_its_cycle_only() {
         let types = PerceptTypes::new([(("in".to_string(), 1), PerceptType::OnChangeNeg)]);
         let mut base = PerceptBase::default();
-        base.apply(&[t("in", "room1")], &types, false);
+        base.apply(&[t("in", "room1")], &types, false, true);
         assert!(base.contains(&t("in", "room1")));
-        let ch = base.apply(&[not(t("in", "room1"))], &types, false);
+        let ch = base.apply(&[not(t("in", "room1"))], &types, false, true);
         assert_eq!(ch.removed, vec![t("in", "room1")]);
         assert!(!base.contains(&t("in", "room1")));
         let negated = wrap(&not(t("in", "room1")));
@@ -250,7 +279,7 @@ mod tests {
             base.batch().contains(&negated),
             "percept(not(in(room1))) this cycle"
         );
-        base.apply(&[], &types, false);
+        base.apply(&[], &types, false, true);
         assert!(!base.batch().contains(&negated), "gone in the next cycle");
     }
 }

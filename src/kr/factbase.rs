@@ -2,9 +2,11 @@
 //! insertion order. Insert and delete are O(1) expected and free their memory (slots are reused,
 //! empty index entries are removed), so churn does not grow the base.
 
-use super::fxhash::FxHashMap;
+use super::fxhash::{FxHashMap, FxHasher};
 use super::native::code::Key;
 use crate::term::{Sym, Term};
+use hashbrown::Equivalent;
+use std::hash::{BuildHasherDefault, Hash};
 
 const NONE: u32 = u32::MAX;
 /// Link sets of an entry: all facts, its predicate, its first-argument and second-argument keys.
@@ -57,7 +59,9 @@ pub(crate) struct Scan {
 pub struct FactBase {
     entries: Vec<Entry>,
     free: Vec<u32>,
-    ids: FxHashMap<Term, u32>,
+    /// A hashbrown map, which finds a fact by anything that hashes and compares as it does
+    /// (see [`FactBase::contains_instance`]).
+    ids: hashbrown::HashMap<Term, u32, BuildHasherDefault<FxHasher>>,
     all: Option<List>,
     preds: FxHashMap<(Sym, u32), List>,
     /// One bit per predicate present ([`pred_bit`]): most asks are for predicates a base
@@ -143,6 +147,12 @@ impl FactBase {
         !self.ids.is_empty() && self.ids.contains_key(fact)
     }
 
+    /// True when the fact `q` stands for is present, found without building it (e.g. a
+    /// [`crate::term::instance::Instance`]).
+    pub fn contains_instance<Q: Hash + Equivalent<Term>>(&self, q: &Q) -> bool {
+        !self.ids.is_empty() && self.ids.contains_key(q)
+    }
+
     /// True when some fact of predicate `name/arity` is present (cheaper than hashing a
     /// whole fact: lets lookups skip bases that cannot hold it).
     #[inline]
@@ -159,8 +169,8 @@ impl FactBase {
         };
         // One hash of the whole fact: the entry API both checks and inserts.
         let slot = match self.ids.entry(fact) {
-            std::collections::hash_map::Entry::Occupied(_) => return false,
-            std::collections::hash_map::Entry::Vacant(v) => v,
+            hashbrown::hash_map::Entry::Occupied(_) => return false,
+            hashbrown::hash_map::Entry::Vacant(v) => v,
         };
         let id = match self.free.pop() {
             Some(id) => id,
@@ -210,6 +220,22 @@ impl FactBase {
         let Some(id) = self.ids.remove(fact) else {
             return false;
         };
+        self.unlink_fact(fact, id)
+    }
+
+    /// Removes the fact `q` stands for, found without building it (see
+    /// [`FactBase::contains_instance`]), and hands it back; `None` when it was not present.
+    pub fn take_instance<Q: Hash + Equivalent<Term>>(&mut self, q: &Q) -> Option<Term> {
+        if self.ids.is_empty() {
+            return None;
+        }
+        let (fact, id) = self.ids.remove_entry(q)?;
+        self.unlink_fact(&fact, id);
+        Some(fact)
+    }
+
+    /// Takes the entry `id` of `fact` (already out of `ids`) off every list.
+    fn unlink_fact(&mut self, fact: &Term, id: u32) -> bool {
         self.edits += 1;
         let Some((name, arity)) = pred_of(fact) else {
             return false;

@@ -1,6 +1,7 @@
 //! The one term type: interned atoms, terms, substitutions and unification, and printing as
 //! Prolog text. Everything else (parser, KR engines, percepts, messages, traces) uses it.
 
+pub mod instance;
 pub mod ops;
 pub mod print;
 pub mod subst;

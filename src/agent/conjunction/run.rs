@@ -2,6 +2,7 @@
 //! values, the engine's order of answers, and the budget that hands a query back to the engine.
 
 use super::*;
+use crate::term::instance::{Instance, Value};
 
 /// The answers of `plan` over `bases` under `theta`, at most `cap`, and whether `cap` stopped
 /// them; `None`: something the plan does not decide, so the engine answers.
@@ -338,16 +339,15 @@ impl<'a> Run<'a> {
         };
         let bases = self.bases;
         // A ground instance is looked up by hash, as the engine looks up a ground fact.
-        if pat.by_hash {
-            if let Some(inst) = self.instance(p, 0)? {
-                for base in bases.iter().filter(|b| b.has_pred(name, arity)) {
-                    self.tick()?;
-                    if base.contains(&inst) {
-                        then(self)?;
-                    }
+        if pat.by_hash && self.ground_now(p, 0)? {
+            for base in bases.iter().filter(|b| b.has_pred(name, arity)) {
+                self.tick()?;
+                // The instance is hashed and compared in place, never built.
+                if base.contains_instance(&self.instance(p)) {
+                    then(self)?;
                 }
-                return Ok(());
             }
+            return Ok(());
         }
         let (k1, k2) = (self.arg_key(p, 0)?, self.arg_key(p, 1)?);
         for base in bases.iter().filter(|b| b.has_pred(name, arity)) {
@@ -367,37 +367,45 @@ impl<'a> Run<'a> {
         Ok(())
     }
 
-    /// The pattern `p` under the values bound now, when that is ground (`Ok(None)`: it is
-    /// not); `Bail` on a float (whose equality is not its unifiability) or a deep term.
-    fn instance(&self, p: &Term, depth: usize) -> Result<Option<Term>, Halt> {
+    /// Whether the pattern `p` is ground under the values bound now (looked at left to right,
+    /// up to the first unbound variable); `Bail` on a float (whose equality is not its
+    /// unifiability) or a deep term.
+    fn ground_now(&self, p: &Term, depth: usize) -> Result<bool, Halt> {
         if depth > MAX_INSTANCE_DEPTH {
             return Err(Halt::Bail);
         }
-        Ok(Some(match p {
-            Term::Var(v) if *v == wk::UNDERSCORE => return Ok(None),
+        match p {
+            Term::Var(v) if *v == wk::UNDERSCORE => Ok(false),
             Term::Var(v) => match self.vals[self.slot(*v)] {
-                None => return Ok(None),
-                Some(Val::I(i)) => Term::Int(i),
-                Some(Val::T(t)) => {
-                    if has_float(t) {
-                        return Err(Halt::Bail);
-                    }
-                    t.clone()
-                }
+                None => Ok(false),
+                Some(Val::I(_)) => Ok(true),
+                Some(Val::T(Term::Float(_))) => Err(Halt::Bail),
+                // Only a compound value is walked for floats.
+                Some(Val::T(t @ Term::Compound(_))) if has_float(t) => Err(Halt::Bail),
+                Some(Val::T(_)) => Ok(true),
             },
             Term::Compound(c) => {
-                let mut args = Vec::with_capacity(c.args.len());
                 for a in c.args.iter() {
-                    match self.instance(a, depth + 1)? {
-                        Some(t) => args.push(t),
-                        None => return Ok(None),
+                    if !self.ground_now(a, depth + 1)? {
+                        return Ok(false);
                     }
                 }
-                Term::compound(c.name, args)
+                Ok(true)
             }
-            Term::Float(_) => return Err(Halt::Bail),
-            t => t.clone(),
-        }))
+            Term::Float(_) => Err(Halt::Bail),
+            _ => Ok(true),
+        }
+    }
+
+    /// The pattern `p` under the values bound now, as a fact base looks it up (see
+    /// [`Run::ground_now`]).
+    fn instance<'r>(&'r self, p: &'a Term) -> Instance<'a, impl Fn(Sym) -> Option<Value<'a>> + 'r> {
+        Instance::new(p, move |v| {
+            self.vals[self.slot(v)].map(|val| match val {
+                Val::T(t) => Value::Term(t),
+                Val::I(i) => Value::Int(i),
+            })
+        })
     }
 
     /// Matches the pattern `p` against `fact`, binding the pattern's free variables in
