@@ -145,20 +145,17 @@ pub fn evaluate(
     cap: usize,
 ) -> Result<Evaluation, Fault> {
     let mut cut = false;
-    // Before the first literal the answers are `base` alone (borrowed, not copied).
     let mut answers: Vec<Subst> = Vec::new();
+    // The first literal's only theta: `base` (mostly empty, so a copy costs nothing).
+    let mut first = [base.clone()];
     for (i, lit) in lits.iter().enumerate() {
-        let thetas = match i {
-            0 => 1,
-            _ => answers.len(),
+        let level: &mut [Subst] = match i {
+            0 => &mut first,
+            _ => &mut answers,
         };
         let mut next = AnswerSet::default();
-        let bound = bound_by_any(match i {
-            0 => std::slice::from_ref(base),
-            _ => &answers[..],
-        });
-        'each: for k in 0..thetas {
-            let theta = if i == 0 { base } else { &answers[k] };
+        let bound = bound_by_any(level);
+        'each: for theta in level.iter_mut() {
             let found = literal(cx, lit, theta, cap, &mut cut)?;
             let count = found.len();
             for (j, a) in found.into_iter().enumerate() {
@@ -169,15 +166,14 @@ pub fn evaluate(
                 // Answers of one theta are distinct, and answers that only bind variables
                 // no theta binds differ from those of every other theta: no search needed.
                 let fresh = a.iter().all(|(v, _)| !bound.contains(&v));
-                let theta = if i == 0 { base } else { &answers[k] };
                 let full = if theta.is_empty() {
                     // Under an empty theta (a condition's first literal, mostly) the answer
                     // is the full answer already: no copy.
                     a
-                } else if i > 0 && j + 1 == count {
-                    // The last answer under a theta of an earlier literal extends that theta
-                    // itself (it is not needed again: a level that ends empty took none).
-                    let mut t = std::mem::take(&mut answers[k]);
+                } else if j + 1 == count {
+                    // The last answer under a theta extends that theta itself (it is not
+                    // needed again: a level that ends empty took none).
+                    let mut t = std::mem::take(theta);
                     for (v, x) in a.iter() {
                         t.bind(v, x.clone());
                     }
