@@ -219,4 +219,19 @@ fn what_a_plan_cannot_decide_is_not_planned() {
         c("\\=", vec![Term::var("X"), Term::atom("a")]),
     ]);
     assert!(Plan::prepare(&q, &kn).is_some());
+    // A plan keeps at most 16 variables (in a fixed array): more are the engine's.
+    let pairs = |n: usize| {
+        Term::conjunction(
+            (0..n)
+                .map(|i| {
+                    c(
+                        "p",
+                        vec![Term::var(&format!("A{i}")), Term::var(&format!("B{i}"))],
+                    )
+                })
+                .collect(),
+        )
+    };
+    assert!(Plan::prepare(&pairs(8), &kn).is_some());
+    assert!(Plan::prepare(&pairs(9), &kn).is_none());
 }

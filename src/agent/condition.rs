@@ -3,13 +3,12 @@
 
 use super::error::Fault;
 use super::goals::Goal;
-use super::mental_state::{match_fact, GoalQuery, MentalState};
+use super::mental_state::{GoalQuery, MentalState};
 use super::program::Lit;
 use crate::kr::fxhash::{FxHashMap, FxHasher};
-use crate::kr::native::code::Key;
 use crate::syntax::ast::MentalOp;
 use crate::term::{Subst, Sym, Term};
-use smallvec::SmallVec;
+use smallvec::{smallvec, SmallVec};
 use std::hash::{Hash, Hasher};
 
 /// Extends `base` with the bindings of `answer`.
@@ -17,11 +16,22 @@ pub fn compose(base: &Subst, answer: &Subst) -> Subst {
     base.extended(answer)
 }
 
-/// An insertion-ordered set of answers: each answer's hash is compared first (a linear scan
-/// of hashes while small, a hash index beyond), the bindings only when hashes are equal.
+/// The answers of one literal: mostly none or one, kept inline.
+type Found = super::conjunction::Answers;
+
+/// An insertion-ordered set of answers: while small, each answer is compared with the others
+/// directly; beyond that its hash is compared first (a linear scan of hashes, then a hash
+/// index), the bindings only when hashes are equal.
 #[derive(Default)]
 struct AnswerSet {
-    items: Vec<Subst>,
+    items: Found,
+    /// The hashes of the items, made once the set outgrows direct comparison.
+    hashed: Option<Box<Hashed>>,
+}
+
+/// The hashes of an [`AnswerSet`]'s items, and an index of them once the set is large.
+#[derive(Default)]
+struct Hashed {
     /// The hashes of the first items (computed when a membership test needs them).
     hashes: Vec<u64>,
     index: FxHashMap<u64, SmallVec<[usize; 1]>>,
@@ -29,6 +39,8 @@ struct AnswerSet {
     indexed: usize,
 }
 
+/// Up to this many answers a new one is compared with each directly (no hashing).
+const COMPARE_UPTO: usize = 8;
 const HASH_FROM: usize = 32;
 
 /// A hash of the bindings of `s` that does not depend on their order.
@@ -49,31 +61,39 @@ fn same_answer(a: &Subst, b: &Subst) -> bool {
 impl AnswerSet {
     /// Adds `s` unless present.
     fn push(&mut self, s: Subst) {
-        while self.hashes.len() < self.items.len() {
-            self.hashes.push(hash_of(&self.items[self.hashes.len()]));
-        }
-        let h = hash_of(&s);
-        if self.items.len() < HASH_FROM {
-            let mut same = self.hashes.iter().zip(&self.items);
-            if !same.any(|(&hi, i)| hi == h && same_answer(i, &s)) {
-                self.hashes.push(h);
-                self.items.push(s);
+        let items = &mut self.items;
+        if items.len() < COMPARE_UPTO {
+            if !items.iter().any(|i| same_answer(i, &s)) {
+                items.push(s);
             }
             return;
         }
-        while self.indexed < self.items.len() {
-            let hi = self.hashes[self.indexed];
-            self.index.entry(hi).or_default().push(self.indexed);
-            self.indexed += 1;
+        let hs = self.hashed.get_or_insert_with(Box::default);
+        while hs.hashes.len() < items.len() {
+            hs.hashes.push(hash_of(&items[hs.hashes.len()]));
         }
-        let slot = self.index.entry(h).or_default();
-        if slot.iter().any(|&i| same_answer(&self.items[i], &s)) {
+        let h = hash_of(&s);
+        if items.len() < HASH_FROM {
+            let mut same = hs.hashes.iter().zip(items.iter());
+            if !same.any(|(&hi, i)| hi == h && same_answer(i, &s)) {
+                hs.hashes.push(h);
+                items.push(s);
+            }
             return;
         }
-        slot.push(self.items.len());
-        self.indexed += 1;
-        self.hashes.push(h);
-        self.items.push(s);
+        while hs.indexed < items.len() {
+            let hi = hs.hashes[hs.indexed];
+            hs.index.entry(hi).or_default().push(hs.indexed);
+            hs.indexed += 1;
+        }
+        let slot = hs.index.entry(h).or_default();
+        if slot.iter().any(|&i| same_answer(&items[i], &s)) {
+            return;
+        }
+        slot.push(items.len());
+        hs.indexed += 1;
+        hs.hashes.push(h);
+        items.push(s);
     }
 
     /// Adds `s`, known to differ from every answer present.
@@ -125,17 +145,20 @@ pub fn evaluate(
     cap: usize,
 ) -> Result<Evaluation, Fault> {
     let mut cut = false;
-    // Before the first literal the answers are `base` alone (borrowed, not copied).
     let mut answers: Vec<Subst> = Vec::new();
+    // The first literal's only theta: `base` (mostly empty, so a copy costs nothing).
+    let mut first = [base.clone()];
     for (i, lit) in lits.iter().enumerate() {
-        let current = match i {
-            0 => std::slice::from_ref(base),
-            _ => &answers[..],
+        let level: &mut [Subst] = match i {
+            0 => &mut first,
+            _ => &mut answers,
         };
         let mut next = AnswerSet::default();
-        let bound = bound_by_any(current);
-        'each: for theta in current {
-            for a in literal(cx, lit, theta, cap, &mut cut)? {
+        let bound = bound_by_any(level);
+        'each: for theta in level.iter_mut() {
+            let found = literal(cx, lit, theta, cap, &mut cut)?;
+            let count = found.len();
+            for (j, a) in found.into_iter().enumerate() {
                 if next.items.len() >= cap {
                     cut = true;
                     break 'each;
@@ -143,10 +166,18 @@ pub fn evaluate(
                 // Answers of one theta are distinct, and answers that only bind variables
                 // no theta binds differ from those of every other theta: no search needed.
                 let fresh = a.iter().all(|(v, _)| !bound.contains(&v));
-                // Under an empty theta (a condition's first literal, mostly) the answer is
-                // the full answer already: no copy.
                 let full = if theta.is_empty() {
+                    // Under an empty theta (a condition's first literal, mostly) the answer
+                    // is the full answer already: no copy.
                     a
+                } else if j + 1 == count {
+                    // The last answer under a theta extends that theta itself (it is not
+                    // needed again: a level that ends empty took none).
+                    let mut t = std::mem::take(theta);
+                    for (v, x) in a.iter() {
+                        t.bind(v, x.clone());
+                    }
+                    t
                 } else {
                     compose(theta, &a)
                 };
@@ -168,7 +199,7 @@ pub fn evaluate(
                 failed: Some((i, before)),
             });
         }
-        answers = next.items;
+        answers = next.items.into_vec();
     }
     if lits.is_empty() {
         answers.push(base.clone());
@@ -193,13 +224,14 @@ fn bound_by_any(answers: &[Subst]) -> SmallVec<[Sym; 8]> {
 
 /// The distinct answers of one literal under `theta` (the bindings each adds to `theta`), at
 /// most `cap` per query (`cut` is set when a query stopped there).
+#[inline(never)]
 fn literal(
     cx: &CondCtx<'_>,
     lit: &Lit,
     theta: &Subst,
     cap: usize,
     cut: &mut bool,
-) -> Result<Vec<Subst>, Fault> {
+) -> Result<Found, Fault> {
     let Lit::Mental {
         negated,
         top_level,
@@ -209,7 +241,7 @@ fn literal(
         plan,
     } = lit
     else {
-        return Ok(vec![Subst::new()]);
+        return Ok(smallvec![Subst::new()]);
     };
     let ms = cx.ms;
     let mut raw = AnswerSet::default();
@@ -229,7 +261,10 @@ fn literal(
                 .and_then(|p| p.answers(ms, theta, cap));
             let (found, stopped) = match planned {
                 Some(r) => r,
-                None => ms.bel_upto_in(query, theta, cap)?,
+                None => {
+                    let (found, stopped) = ms.bel_upto_in(query, theta, cap)?;
+                    (Found::from_vec(found), stopped)
+                }
             };
             *cut |= stopped;
             if found.len() == 1 {
@@ -241,8 +276,19 @@ fn literal(
             }
         }
         (MentalOp::Goal | MentalOp::AGoal | MentalOp::GoalA, None) => {
-            let q = theta.apply(query);
-            let gq = GoalQuery::new(&ms.knowledge, &q);
+            // The query's instance is matched in place when `theta` allows (no copy made).
+            let owned;
+            let under = match theta.is_empty() {
+                true => None,
+                false => GoalQuery::under(&ms.knowledge, query, theta),
+            };
+            let gq = match under {
+                Some(gq) => gq,
+                None => {
+                    owned = theta.apply(query);
+                    GoalQuery::new(&ms.knowledge, &owned)
+                }
+            };
             let base = match (top_level, cx.only) {
                 (true, _) => Some(ms.attention.top_level()),
                 (false, Some(_)) => None,
@@ -256,7 +302,7 @@ fn literal(
             // When only goal facts answer the query, the goals without a fact of its
             // predicate have no answer: look at the others alone (the base's index).
             let goals: SmallVec<[&Goal; 16]> = match (base, gq.fact_predicate()) {
-                (Some(b), Some((name, arity))) => match q.args().first().and_then(Key::of_term) {
+                (Some(b), Some((name, arity))) => match gq.first_key() {
                     Some(key) => b.with_first_arg(name, arity, key).collect(),
                     None => b.with_predicate(name, arity).collect(),
                 },
@@ -264,12 +310,17 @@ fn literal(
                 (None, _) => cx.only.into_iter().collect(),
             };
             // The instance of a query without `_` that matched a goal fact is that fact.
-            let plain = !has_anonymous(&q);
+            let plain = !has_anonymous(gq.query);
             for g in goals {
-                if *op != MentalOp::Goal && plain && gq.only_facts {
+                // Goal facts alone answer: `goal` takes each match, `a-goal`/`goal-a` each
+                // whose instance (the fact itself, with no `_`) is (not) believed.
+                let by_facts = *op == MentalOp::Goal || plain;
+                if by_facts && gq.only_facts {
                     if let Some(found) = gq.matching_facts(g) {
                         for (a, fact) in found {
-                            if ms.believes(fact)? == (*op == MentalOp::GoalA) {
+                            if *op == MentalOp::Goal
+                                || ms.believes(fact)? == (*op == MentalOp::GoalA)
+                            {
                                 raw.push(a);
                             }
                         }
@@ -280,7 +331,7 @@ fn literal(
                 *cut |= stopped;
                 for a in found {
                     if *op != MentalOp::Goal {
-                        let inst = a.apply(&q);
+                        let inst = a.apply(&gq.instance());
                         if !inst.is_ground() {
                             return Err(Fault {
                                 message: format!(
@@ -310,11 +361,11 @@ fn literal(
 
 /// A literal's answers from the answers of its query: for a negated literal, one empty answer
 /// when the query had none, else none.
-fn finish(negated: bool, raw: AnswerSet) -> Vec<Subst> {
+fn finish(negated: bool, raw: AnswerSet) -> Found {
     match negated {
         false => raw.items,
-        true if raw.items.is_empty() => vec![Subst::new()],
-        true => Vec::new(),
+        true if raw.items.is_empty() => smallvec![Subst::new()],
+        true => Found::new(),
     }
 }
 
@@ -324,6 +375,7 @@ fn finish(negated: bool, raw: AnswerSet) -> Vec<Subst> {
 /// it matched) and a ground fact's belief is a lookup: the goals with a fact of the query's
 /// predicate (and first argument) in adoption order, each fact matched and looked up in the
 /// belief bases. False (and nothing added): not decided here.
+#[inline(never)]
 fn goal_fact_answers(
     ms: &MentalState,
     base: &super::goals::GoalBase,
@@ -331,17 +383,16 @@ fn goal_fact_answers(
     believed: bool,
     raw: &mut AnswerSet,
 ) -> bool {
-    let q = gq.query;
     let Some((name, arity)) = gq.fact_predicate() else {
         return false;
     };
-    if !base.exactly_indexed() || has_anonymous(q) {
+    if !base.exactly_indexed() || has_anonymous(gq.query) {
         return false;
     }
     let Some(holders) = ms.fact_holders(name, arity) else {
         return false;
     };
-    let positions = match q.args().first().and_then(Key::of_term) {
+    let positions = match gq.first_key() {
         Some(key) => base.positions_with_key(name, arity as u32, key),
         None => base.positions(name, arity as u32),
     };
@@ -356,7 +407,7 @@ fn goal_fact_answers(
         let facts = goals[i as usize].facts.iter();
         for fact in facts.filter(|f| f.functor() == Some((name, arity))) {
             let mut a = Subst::with_capacity(arity);
-            if !match_fact(q, fact, &mut a) || holders.iter().any(|b| b.contains(fact)) != believed
+            if !gq.match_fact(fact, &mut a) || holders.iter().any(|b| b.contains(fact)) != believed
             {
                 continue;
             }

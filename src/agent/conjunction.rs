@@ -18,8 +18,13 @@ use std::sync::{Arc, OnceLock, Weak};
 
 mod run;
 
+/// The answers of a plan: mostly none or one, kept inline.
+pub type Answers = SmallVec<[Subst; 1]>;
+
 /// Most conjuncts a plan takes (its run recurses once per conjunct).
 const MAX_GOALS: usize = 16;
+/// Most variables a plan takes (a run keeps their values in a fixed array).
+const MAX_VARS: usize = 16;
 /// Deepest arithmetic expression a plan evaluates (by recursion).
 const MAX_EXPR_DEPTH: usize = 8;
 /// Deepest pattern a plan instantiates for a lookup by hash (by recursion).
@@ -36,7 +41,8 @@ enum Cmp {
     Ne,
 }
 
-/// One conjunct of a plan.
+/// One conjunct of a plan, its variables numbered (a variable's register is its place in
+/// the plan's [`Plan::vars`]).
 #[derive(Debug)]
 enum Step {
     /// `true`.
@@ -46,18 +52,40 @@ enum Step {
     /// `not(P)` / `\+ P` of a fact pattern: no fact matches.
     Absent(Pattern),
     /// `Lhs is Expr` (the left side a variable or an integer).
-    Is(Term, Term),
+    Is(Arg, Expr),
     /// An arithmetic comparison of two expressions.
-    Compare(Cmp, Term, Term),
+    Compare(Cmp, Expr, Expr),
     /// `A = B` of variables, atoms and integers.
-    Unify(Term, Term),
+    Unify(Arg, Arg),
     /// `A \= B` of variables, atoms and integers.
-    Differ(Term, Term),
+    Differ(Arg, Arg),
+}
+
+/// A part of a conjunct: a variable's register, `_`, a compound of parts or any other term.
+#[derive(Debug)]
+enum Arg {
+    Reg(usize),
+    Anon,
+    Compound(Sym, Vec<Arg>),
+    Const(Term),
+}
+
+/// An integer expression of a plan.
+#[derive(Debug)]
+enum Expr {
+    Int(i64),
+    Reg(usize),
+    Neg(Box<Expr>),
+    Bin(Op, Box<Expr>, Box<Expr>),
 }
 
 /// A fact pattern of a plan.
 #[derive(Debug)]
 struct Pattern {
+    name: Sym,
+    arity: usize,
+    args: Vec<Arg>,
+    /// The pattern as written (its variables are the plan's): what a lookup by hash hashes.
     term: Term,
     /// Looked up by hash once its instance is ground: it has a compound argument (which the
     /// fact index does not narrow) and is no mail fact (the mailbox may hold open messages,
@@ -120,31 +148,26 @@ impl Plan {
         if parts.len() > MAX_GOALS {
             return None;
         }
-        let steps = parts
-            .iter()
-            .map(|p| step(p, kn))
-            .collect::<Option<Vec<_>>>()?;
         let vars = vars_in_order(query);
-        // One bit each in a run's `given`.
-        if vars.len() > 64 {
+        // A register each in a run.
+        if vars.len() > MAX_VARS {
             return None;
         }
+        let steps = parts
+            .iter()
+            .map(|p| step(p, kn, &vars))
+            .collect::<Option<Vec<_>>>()?;
         Some(Plan { steps, vars })
     }
 
     /// The first `cap` answers of the plan's query under `theta` in the fact bases of `ms`
     /// (each binding the query's variables `theta` leaves free, in the engine's order) and
     /// whether `cap` stopped them; `None`: ask the engine.
-    pub fn answers(
-        &self,
-        ms: &MentalState,
-        theta: &Subst,
-        cap: usize,
-    ) -> Option<(Vec<Subst>, bool)> {
+    pub fn answers(&self, ms: &MentalState, theta: &Subst, cap: usize) -> Option<(Answers, bool)> {
         if !ms.native_roomy() {
             return None;
         }
-        self.answers_in(&ms.bases(), theta, cap)
+        run::answers(self, &ms.bases(), theta, cap)
     }
 
     /// [`Plan::answers`] over the fact bases `bases` (the caller checked the limits).
@@ -154,46 +177,74 @@ impl Plan {
         theta: &Subst,
         cap: usize,
     ) -> Option<(Vec<Subst>, bool)> {
-        run::answers(self, bases, theta, cap)
+        run::answers(self, bases, theta, cap).map(|(found, cut)| (found.into_vec(), cut))
     }
 }
 
-/// The step of conjunct `t`; `None` when a plan cannot take it.
-fn step(t: &Term, kn: &Knowledge) -> Option<Step> {
+/// The step of conjunct `t` (whose variables are `vars`); `None` when a plan cannot take it
+/// (a predicate knowledge or a built-in answers, a float, a control construct).
+fn step(t: &Term, kn: &Knowledge, vars: &[Sym]) -> Option<Step> {
     let (name, arity) = t.functor()?;
     let args = t.args();
+    let side = |a: &Term| arg(a, vars, 0);
     Some(match (name, arity) {
         (wk::TRUE, 0) => Step::True,
-        (wk::NOT | wk::NAF, 1) => Step::Absent(pattern(&args[0], kn)?),
+        (wk::NOT | wk::NAF, 1) => Step::Absent(pattern(&args[0], kn, vars)?),
         (wk::IS, 2) if matches!(args[0], Term::Var(_) | Term::Int(_)) => {
-            expr(&args[1], 0)?;
-            Step::Is(args[0].clone(), args[1].clone())
+            Step::Is(side(&args[0])?, expr(&args[1], vars, 0)?)
         }
         (wk::EQUALS, 2) if atomic_side(&args[0]) && atomic_side(&args[1]) => {
-            Step::Unify(args[0].clone(), args[1].clone())
+            Step::Unify(side(&args[0])?, side(&args[1])?)
         }
         (_, 2) if name.name() == "\\=" && atomic_side(&args[0]) && atomic_side(&args[1]) => {
-            Step::Differ(args[0].clone(), args[1].clone())
+            Step::Differ(side(&args[0])?, side(&args[1])?)
         }
-        (_, 2) if comparison(name).is_some() => {
-            expr(&args[0], 0)?;
-            expr(&args[1], 0)?;
-            Step::Compare(comparison(name)?, args[0].clone(), args[1].clone())
-        }
-        _ => Step::Fact(pattern(t, kn)?),
+        (_, 2) if comparison(name).is_some() => Step::Compare(
+            comparison(name)?,
+            expr(&args[0], vars, 0)?,
+            expr(&args[1], vars, 0)?,
+        ),
+        _ => Step::Fact(pattern(t, kn, vars)?),
     })
 }
 
 /// `t` as a fact pattern: a predicate only facts answer, and no float.
-fn pattern(t: &Term, kn: &Knowledge) -> Option<Pattern> {
+fn pattern(t: &Term, kn: &Knowledge, vars: &[Sym]) -> Option<Pattern> {
     let (name, arity) = t.functor()?;
     if kn.resolves(name, arity) || has_float(t) {
         return None;
     }
     let mail = is_mail_predicate(name, arity);
     Some(Pattern {
+        name,
+        arity,
+        args: t
+            .args()
+            .iter()
+            .map(|a| arg(a, vars, 1))
+            .collect::<Option<_>>()?,
         term: t.clone(),
         by_hash: !mail && t.args().iter().any(|a| matches!(a, Term::Compound(_))),
+    })
+}
+
+/// The term `t` (at `depth`) with its variables as registers; `None` when deeper than
+/// [`MAX_INSTANCE_DEPTH`] (by recursion).
+fn arg(t: &Term, vars: &[Sym], depth: usize) -> Option<Arg> {
+    if depth > MAX_INSTANCE_DEPTH {
+        return None;
+    }
+    Some(match t {
+        Term::Var(v) if *v == wk::UNDERSCORE => Arg::Anon,
+        Term::Var(v) => Arg::Reg(vars.iter().position(|w| w == v)?),
+        Term::Compound(c) => Arg::Compound(
+            c.name,
+            c.args
+                .iter()
+                .map(|a| arg(a, vars, depth + 1))
+                .collect::<Option<_>>()?,
+        ),
+        t => Arg::Const(t.clone()),
     })
 }
 
@@ -216,7 +267,7 @@ fn comparison(name: Sym) -> Option<Cmp> {
 }
 
 /// The integer operator of `name/arity` a plan evaluates.
-#[derive(Clone, Copy, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Op {
     Add,
     Sub,
@@ -240,18 +291,26 @@ fn operator(name: Sym, arity: usize) -> Option<Op> {
     })
 }
 
-/// Checks that `t` is an expression a plan evaluates: integers and variables under
-/// [`operator`]s, at most [`MAX_EXPR_DEPTH`] deep.
-fn expr(t: &Term, depth: usize) -> Option<()> {
+/// The expression `t` a plan evaluates: integers and variables under [`operator`]s, at most
+/// [`MAX_EXPR_DEPTH`] deep (by recursion); `None` for anything else.
+fn expr(t: &Term, vars: &[Sym], depth: usize) -> Option<Expr> {
     if depth > MAX_EXPR_DEPTH {
         return None;
     }
     match t {
-        Term::Int(_) => Some(()),
-        Term::Var(v) if *v != wk::UNDERSCORE => Some(()),
+        Term::Int(i) => Some(Expr::Int(*i)),
+        Term::Var(v) if *v != wk::UNDERSCORE => Some(Expr::Reg(vars.iter().position(|w| w == v)?)),
         Term::Compound(c) => {
-            operator(c.name, c.args.len())?;
-            c.args.iter().try_for_each(|a| expr(a, depth + 1))
+            let op = operator(c.name, c.args.len())?;
+            let x = Box::new(expr(&c.args[0], vars, depth + 1)?);
+            match op {
+                Op::Neg => Some(Expr::Neg(x)),
+                _ => Some(Expr::Bin(
+                    op,
+                    x,
+                    Box::new(expr(&c.args[1], vars, depth + 1)?),
+                )),
+            }
         }
         _ => None,
     }

@@ -386,7 +386,8 @@ impl MentalState {
             return Ok((answers, false));
         }
         let view = View::goal(&self.knowledge, &g.facts);
-        self.run(|e| e.query_upto(&view, gq.query, cap), gq.query)
+        let q = gq.instance();
+        self.run(|e| e.query_upto(&view, &q, cap), &q)
     }
 
     /// True when one goal's facts plus knowledge entail `q`.
@@ -400,7 +401,8 @@ impl MentalState {
             return Ok(!answers.is_empty());
         }
         let view = View::goal(&self.knowledge, &g.facts);
-        self.run(|e| e.holds(&view, gq.query), gq.query)
+        let q = gq.instance();
+        self.run(|e| e.holds(&view, &q), &q)
     }
 
     /// True when some goal of `base` entails `q`. When the first conjunct of `q` is of a
@@ -667,6 +669,20 @@ fn all_vars(t: &Term, mut ok: impl FnMut(Sym) -> bool) -> bool {
     true
 }
 
+/// True when `t` is ground and has no float (whose equality is not plain: a value compared as
+/// a whole may be the very term it is compared with).
+fn plain_ground(t: &Term) -> bool {
+    let mut stack: SmallVec<[&Term; 16]> = smallvec![t];
+    while let Some(t) = stack.pop() {
+        match t {
+            Term::Var(_) | Term::Float(_) => return false,
+            Term::Compound(c) => stack.extend(c.args.iter()),
+            _ => {}
+        }
+    }
+    true
+}
+
 /// True when variable `v` occurs in `t`.
 fn mentions(t: &Term, v: Sym) -> bool {
     !all_vars(t, |w| w != v)
@@ -674,8 +690,11 @@ fn mentions(t: &Term, v: Sym) -> bool {
 
 /// A query about goals, prepared once for all the goals it is asked of.
 pub struct GoalQuery<'q> {
-    /// The query.
+    /// The query (under `given`).
     pub query: &'q Term,
+    /// Ground values of some of the query's variables, read in place instead of building the
+    /// query's instance (see [`GoalQuery::under`]).
+    given: Option<&'q Subst>,
     /// Its predicate, when knowledge does not define it (then only goal facts or built-ins
     /// answer it).
     key: Option<(crate::term::Sym, usize)>,
@@ -690,9 +709,53 @@ impl<'q> GoalQuery<'q> {
         let key = q.functor().filter(|k| !knowledge.defines(k.0, k.1));
         GoalQuery {
             query: q,
+            given: None,
             key,
             only_facts: key.is_some_and(|k| !knowledge.resolves(k.0, k.1)),
         }
+    }
+
+    /// Prepares the instance of `q` under `theta` without building it, when `q` is not a
+    /// variable and `theta` binds its variables to ground terms only (then matching a goal fact
+    /// against `q` with `theta`'s values read in place is matching it against the instance);
+    /// `None` otherwise.
+    pub fn under(knowledge: &Knowledge, q: &'q Term, theta: &'q Subst) -> Option<GoalQuery<'q>> {
+        let plain = |v: Sym| theta.get(v).is_none_or(plain_ground);
+        // A query of atomic arguments (the usual `fib(N)`) is checked without a walk.
+        let flat = q.args().iter().all(|a| match a {
+            Term::Var(v) => plain(*v),
+            Term::Compound(_) => false,
+            _ => true,
+        });
+        if matches!(q, Term::Var(_)) || !(flat || all_vars(q, plain)) {
+            return None;
+        }
+        let mut gq = GoalQuery::new(knowledge, q);
+        gq.given = Some(theta);
+        Some(gq)
+    }
+
+    /// The query's instance (built only when `given` is used).
+    pub fn instance(&self) -> std::borrow::Cow<'q, Term> {
+        match self.given {
+            Some(theta) => std::borrow::Cow::Owned(theta.apply(self.query)),
+            None => std::borrow::Cow::Borrowed(self.query),
+        }
+    }
+
+    /// The index key of the instance's first argument (`None`: no argument, or a variable).
+    pub(crate) fn first_key(&self) -> Option<Key> {
+        let first = self.query.args().first()?;
+        match (first, self.given) {
+            (Term::Var(v), Some(theta)) => theta.get(*v).and_then(Key::of_term),
+            _ => Key::of_term(first),
+        }
+    }
+
+    /// Matches the instance against the ground goal fact `fact`, binding its variables (but
+    /// `_`) in reading order into `s`; false when they differ.
+    pub fn match_fact(&self, fact: &Term, s: &mut Subst) -> bool {
+        match_fact_under(self.query, self.given, fact, s)
     }
 
     /// The predicate of the query when only goal facts answer it (a goal without facts of it
@@ -722,7 +785,7 @@ impl<'q> GoalQuery<'q> {
         for f in g.facts.iter().filter(|f| f.functor() == Some(key)) {
             of_key = true;
             let mut a = Subst::new();
-            if match_fact(self.query, f, &mut a) && !out.iter().any(|(b, _)| *b == a) {
+            if self.match_fact(f, &mut a) && !out.iter().any(|(b, _)| *b == a) {
                 out.push((a, f));
             }
         }
@@ -730,10 +793,18 @@ impl<'q> GoalQuery<'q> {
     }
 }
 
-/// Matches `pattern` against the ground `fact`, binding the pattern's variables (but `_`, which
-/// matches anything) in reading order, as the engine's answers do; false when they differ.
-pub(super) fn match_fact(pattern: &Term, fact: &Term, s: &mut Subst) -> bool {
-    if let Some(matched) = match_flat(pattern, fact, s) {
+/// `match_fact_under` with nothing given.
+#[cfg(test)]
+fn match_fact(pattern: &Term, fact: &Term, s: &mut Subst) -> bool {
+    match_fact_under(pattern, None, fact, s)
+}
+
+/// Matches the instance of `pattern` under `given` (which binds variables to ground terms only)
+/// against the ground `fact`, binding the pattern's other variables (but `_`, which matches
+/// anything) in reading order, as the engine's answers do; false when they differ. `given` is
+/// read in place: a variable it binds matches what equals its value.
+fn match_fact_under(pattern: &Term, given: Option<&Subst>, fact: &Term, s: &mut Subst) -> bool {
+    if let Some(matched) = match_flat(pattern, given, fact, s) {
         return matched;
     }
     // Argument lists still to match, the innermost last (leftmost argument first).
@@ -753,7 +824,7 @@ pub(super) fn match_fact(pattern: &Term, fact: &Term, s: &mut Subst) -> bool {
                 work.push((&p.args, &f.args));
             }
             _ => {
-                if !match_leaf(p, f, s) {
+                if !match_leaf(p, given, f, s) {
                     return false;
                 }
             }
@@ -762,9 +833,9 @@ pub(super) fn match_fact(pattern: &Term, fact: &Term, s: &mut Subst) -> bool {
     true
 }
 
-/// [`match_fact`] of a pattern whose arguments have no compound term (`fib(N)`, `at(a, X)`):
-/// one pass over the arguments; `None` for other patterns.
-fn match_flat(pattern: &Term, fact: &Term, s: &mut Subst) -> Option<bool> {
+/// [`match_fact_under`] of a pattern whose arguments have no compound term (`fib(N)`,
+/// `at(a, X)`): one pass over the arguments; `None` for other patterns.
+fn match_flat(pattern: &Term, given: Option<&Subst>, fact: &Term, s: &mut Subst) -> Option<bool> {
     let (Term::Compound(p), Term::Compound(f)) = (pattern, fact) else {
         return None;
     };
@@ -778,15 +849,15 @@ fn match_flat(pattern: &Term, fact: &Term, s: &mut Subst) -> Option<bool> {
         p.args
             .iter()
             .zip(f.args.iter())
-            .all(|(p, f)| match_leaf(p, f, s)),
+            .all(|(p, f)| match_leaf(p, given, f, s)),
     )
 }
 
-/// [`match_fact`] of a pattern that is a variable or atomic against a fact's term.
-fn match_leaf(p: &Term, f: &Term, s: &mut Subst) -> bool {
+/// [`match_fact_under`] of a pattern that is a variable or atomic against a fact's term.
+fn match_leaf(p: &Term, given: Option<&Subst>, f: &Term, s: &mut Subst) -> bool {
     match p {
         Term::Var(v) if *v == wk::UNDERSCORE => true,
-        Term::Var(v) => match s.get(*v) {
+        Term::Var(v) => match given.and_then(|g| g.get(*v)).or_else(|| s.get(*v)) {
             Some(bound) => bound == f,
             None => {
                 s.bind(*v, f.clone());
@@ -833,5 +904,40 @@ mod tests {
         let bare = Term::compound("p", vec![Term::Var(wk::UNDERSCORE); 2]);
         let mut s = Subst::new();
         assert!(match_fact(&bare, &term("p(a, b)"), &mut s) && s.is_empty());
+    }
+
+    #[test]
+    fn a_goal_query_under_ground_bindings_answers_as_its_instance() {
+        let kn = Knowledge::load(&[]).expect("knowledge");
+        let goal = Goal::new(term("(p(a, f(1), b), p(c, f(2), a), q(f(1)), q(2))"));
+        let cases: [(&str, &[(&str, &str)]); 6] = [
+            ("p(X, Y, Z)", &[("Y", "f(1)")]),
+            ("p(X, f(W), Z)", &[("W", "2"), ("V", "x")]),
+            ("q(Y)", &[("Y", "f(1)")]),
+            ("p(X, Y, X)", &[("X", "a")]),
+            ("p(X, Y, Z)", &[("X", "c"), ("Z", "a")]),
+            ("p(_, f(N), _)", &[("N", "3")]),
+        ];
+        for (q, binds) in cases {
+            let q = term(q);
+            let mut theta = Subst::new();
+            for (v, t) in binds {
+                theta.bind(Sym::intern(v), term(t));
+            }
+            let under = GoalQuery::under(&kn, &q, &theta).expect("ground bindings");
+            let inst = theta.apply(&q);
+            let built = GoalQuery::new(&kn, &inst);
+            assert_eq!(under.first_key(), built.first_key(), "{q}");
+            let answers = |gq: &GoalQuery<'_>| gq.facts_only(&goal);
+            assert_eq!(answers(&under), answers(&built), "{q} under {theta:?}");
+        }
+        // Bindings that are not ground, or hold a float, are not read in place.
+        let q = term("q(Y)");
+        for t in ["g(Z)", "1.5", "f(2.0)"] {
+            let mut theta = Subst::new();
+            theta.bind(Sym::intern("Y"), term(t));
+            assert!(GoalQuery::under(&kn, &q, &theta).is_none(), "{t}");
+        }
+        assert!(GoalQuery::under(&kn, &term("X"), &Subst::new()).is_none());
     }
 }

@@ -11,17 +11,18 @@ pub(super) fn answers(
     bases: &[&FactBase],
     theta: &Subst,
     cap: usize,
-) -> Option<(Vec<Subst>, bool)> {
+) -> Option<(Answers, bool)> {
     let mut run = Run {
         plan,
         bases,
-        vals: SmallVec::with_capacity(plan.vars.len()),
+        vals: [None; MAX_VARS],
         given: 0,
-        trail: SmallVec::new(),
+        trail: [0; MAX_VARS],
+        bound: 0,
         steps: 0,
         cells: 0,
         cap,
-        out: Vec::new(),
+        out: Answers::new(),
     };
     for (i, v) in plan.vars.iter().enumerate() {
         let val = theta.get(*v);
@@ -31,7 +32,7 @@ pub(super) fn answers(
             }
             run.given |= 1 << i;
         }
-        run.vals.push(val.map(Val::T));
+        run.vals[i] = val.map(Val::T);
     }
     match run.solve(0) {
         // As the engine reports it: stopped when `cap` answers were reached.
@@ -91,14 +92,17 @@ type Go = Result<(), Halt>;
 struct Run<'a> {
     plan: &'a Plan,
     bases: &'a [&'a FactBase],
-    vals: SmallVec<[Option<Val<'a>>; 12]>,
+    vals: [Option<Val<'a>>; MAX_VARS],
     /// The variables `theta` binds (a bit each), left out of the answers.
     given: u64,
-    trail: SmallVec<[usize; 16]>,
+    /// The registers bound since the run began, the last `bound` entries of which count (a
+    /// register is bound at most once at a time: at most [`MAX_VARS`] entries).
+    trail: [u8; MAX_VARS],
+    bound: usize,
     steps: usize,
     cells: usize,
     cap: usize,
-    out: Vec<Subst>,
+    out: Answers,
 }
 
 impl<'a> Run<'a> {
@@ -178,39 +182,32 @@ impl<'a> Run<'a> {
         Ok(())
     }
 
-    /// The slot of variable `v` in the plan's order.
-    fn slot(&self, v: Sym) -> usize {
-        self.plan
-            .vars
-            .iter()
-            .position(|&w| w == v)
-            .expect("the plan lists every variable of its query")
-    }
-
     fn bind(&mut self, k: usize, val: Val<'a>) {
         self.vals[k] = Some(val);
-        self.trail.push(k);
+        self.trail[self.bound] = k as u8;
+        self.bound += 1;
     }
 
     fn undo(&mut self, mark: usize) {
-        while self.trail.len() > mark {
-            if let Some(k) = self.trail.pop() {
-                self.vals[k] = None;
-            }
+        while self.bound > mark {
+            self.bound -= 1;
+            self.vals[self.trail[self.bound] as usize] = None;
         }
     }
 
-    /// The value of a side of `=`/`\=` (`None`: an unbound variable).
-    fn side(&self, t: &'a Term) -> Option<Val<'a>> {
+    /// The value of a side of `=`/`\=` (`None`: an unbound variable or `_`).
+    fn side(&self, t: &'a Arg) -> Option<Val<'a>> {
         match t {
-            t if is_anonymous(t) => None,
-            Term::Var(v) => self.vals[self.slot(*v)],
-            t => Some(Val::T(t)),
+            Arg::Anon => None,
+            Arg::Reg(k) => self.vals[*k],
+            Arg::Const(t) => Some(Val::T(t)),
+            // Not made by `prepare` for a side; a compound never equals an atomic value.
+            Arg::Compound(..) => None,
         }
     }
 
     /// `a = b` of variables, atoms and integers, then the conjuncts after `i`.
-    fn unify_atomic(&mut self, a: &'a Term, b: &'a Term, i: usize) -> Go {
+    fn unify_atomic(&mut self, a: &'a Arg, b: &'a Arg, i: usize) -> Go {
         match (self.side(a), self.side(b)) {
             (Some(x), Some(y)) => {
                 if same(x, y).ok_or(Halt::Bail)? {
@@ -222,38 +219,40 @@ impl<'a> Run<'a> {
             (None, Some(val)) => self.bind_then(a, val, i),
             (Some(val), None) => self.bind_then(b, val, i),
             // One variable with itself; two unbound ones the engine would alias.
-            (None, None) if a == b && !is_anonymous(a) => self.solve(i + 1),
-            (None, None) => Err(Halt::Bail),
+            (None, None) => match (a, b) {
+                (Arg::Reg(x), Arg::Reg(y)) if x == y => self.solve(i + 1),
+                _ => Err(Halt::Bail),
+            },
         }
     }
 
     /// Binds the unbound variable `var` to `val`, then runs the conjuncts after `i`.
-    fn bind_then(&mut self, var: &'a Term, val: Val<'a>, i: usize) -> Go {
-        let Term::Var(v) = var else {
-            return Err(Halt::Bail);
-        };
-        if *v == wk::UNDERSCORE {
-            return self.solve(i + 1);
+    fn bind_then(&mut self, var: &'a Arg, val: Val<'a>, i: usize) -> Go {
+        match var {
+            Arg::Anon => self.solve(i + 1),
+            Arg::Reg(k) => {
+                let mark = self.bound;
+                self.bind(*k, val);
+                let r = self.solve(i + 1);
+                self.undo(mark);
+                r
+            }
+            _ => Err(Halt::Bail),
         }
-        let mark = self.trail.len();
-        self.bind(self.slot(*v), val);
-        let r = self.solve(i + 1);
-        self.undo(mark);
-        r
     }
 
     /// `lhs is <v>`, then the conjuncts after `i`.
-    fn bind_int(&mut self, lhs: &'a Term, v: i64, i: usize) -> Go {
+    fn bind_int(&mut self, lhs: &'a Arg, v: i64, i: usize) -> Go {
         match lhs {
-            Term::Int(j) => {
+            Arg::Const(Term::Int(j)) => {
                 if *j == v {
                     self.solve(i + 1)
                 } else {
                     Ok(())
                 }
             }
-            Term::Var(x) if *x == wk::UNDERSCORE => self.solve(i + 1),
-            Term::Var(x) => match self.vals[self.slot(*x)] {
+            Arg::Anon => self.solve(i + 1),
+            Arg::Reg(k) => match self.vals[*k] {
                 None => self.bind_then(lhs, Val::I(v), i),
                 Some(val) => match val.int() {
                     Some(j) if j == v => self.solve(i + 1),
@@ -265,22 +264,16 @@ impl<'a> Run<'a> {
         }
     }
 
-    /// The integer value of the expression `t` (checked by [`expr`]); `Bail` for anything the
-    /// engine might answer otherwise (an unbound or non-integer operand, an overflow, a zero
-    /// divisor).
-    fn eval(&self, t: &Term) -> Result<i64, Halt> {
-        match t {
-            Term::Int(i) => Ok(*i),
-            Term::Var(v) => self.vals[self.slot(*v)]
-                .and_then(Val::int)
-                .ok_or(Halt::Bail),
-            Term::Compound(c) => {
-                let op = operator(c.name, c.args.len()).ok_or(Halt::Bail)?;
-                let x = self.eval(&c.args[0])?;
-                if op == Op::Neg {
-                    return x.checked_neg().ok_or(Halt::Bail);
-                }
-                let y = self.eval(&c.args[1])?;
+    /// The integer value of the expression `e`; `Bail` for anything the engine might answer
+    /// otherwise (an unbound or non-integer operand, an overflow, a zero divisor).
+    fn eval(&self, e: &Expr) -> Result<i64, Halt> {
+        match e {
+            Expr::Int(i) => Ok(*i),
+            Expr::Reg(k) => self.vals[*k].and_then(Val::int).ok_or(Halt::Bail),
+            Expr::Neg(x) => self.eval(x)?.checked_neg().ok_or(Halt::Bail),
+            Expr::Bin(op, x, y) => {
+                let x = self.eval(x)?;
+                let y = self.eval(y)?;
                 match op {
                     Op::Add => x.checked_add(y),
                     Op::Sub => x.checked_sub(y),
@@ -297,22 +290,19 @@ impl<'a> Run<'a> {
                 }
                 .ok_or(Halt::Bail)
             }
-            _ => Err(Halt::Bail),
         }
     }
 
     /// The index key of argument `i` of the pattern `p` now (`Ok(None)`: unbound or absent).
-    fn arg_key(&self, p: &Term, i: usize) -> Result<Option<Key>, Halt> {
-        let Some(a) = p.args().get(i) else {
-            return Ok(None);
-        };
-        let val = match a {
-            Term::Var(v) if *v == wk::UNDERSCORE => return Ok(None),
-            Term::Var(v) => match self.vals[self.slot(*v)] {
+    fn arg_key(&self, p: &Pattern, i: usize) -> Result<Option<Key>, Halt> {
+        let val = match p.args.get(i) {
+            None | Some(Arg::Anon) => return Ok(None),
+            Some(Arg::Reg(k)) => match self.vals[*k] {
                 Some(val) => val,
                 None => return Ok(None),
             },
-            t => Val::T(t),
+            Some(Arg::Compound(name, args)) => return Ok(Some(Key::Fun(*name, args.len() as u32))),
+            Some(Arg::Const(t)) => Val::T(t),
         };
         val.key().map(Some).ok_or(Halt::Bail)
     }
@@ -332,14 +322,11 @@ impl<'a> Run<'a> {
     /// Calls `then` once for each fact that matches the pattern `p` (with the pattern's free
     /// variables bound to the fact's parts), in the engine's order: base by base, each in
     /// insertion order.
-    fn each_match(&mut self, pat: &'a Pattern, then: &mut dyn FnMut(&mut Run<'a>) -> Go) -> Go {
-        let p = &pat.term;
-        let Some((name, arity)) = p.functor() else {
-            return Err(Halt::Bail);
-        };
+    fn each_match(&mut self, p: &'a Pattern, then: &mut dyn FnMut(&mut Run<'a>) -> Go) -> Go {
+        let (name, arity) = (p.name, p.arity);
         let bases = self.bases;
         // A ground instance is looked up by hash, as the engine looks up a ground fact.
-        if pat.by_hash && self.ground_now(p, 0)? {
+        if p.by_hash && self.ground_now(&p.args)? {
             for base in bases.iter().filter(|b| b.has_pred(name, arity)) {
                 self.tick()?;
                 // The instance is hashed and compared in place, never built.
@@ -354,7 +341,7 @@ impl<'a> Run<'a> {
             let mut scan = base.scan(name, arity as u32, k1, k2);
             while let Some(fact) = base.advance(&mut scan) {
                 self.tick()?;
-                let mark = self.trail.len();
+                let mark = self.bound;
                 let r = match self.match_fact(p, fact) {
                     Ok(true) => then(self),
                     Ok(false) => Ok(()),
@@ -367,41 +354,39 @@ impl<'a> Run<'a> {
         Ok(())
     }
 
-    /// Whether the pattern `p` is ground under the values bound now (looked at left to right,
-    /// up to the first unbound variable); `Bail` on a float (whose equality is not its
-    /// unifiability) or a deep term.
-    fn ground_now(&self, p: &Term, depth: usize) -> Result<bool, Halt> {
-        if depth > MAX_INSTANCE_DEPTH {
-            return Err(Halt::Bail);
-        }
-        match p {
-            Term::Var(v) if *v == wk::UNDERSCORE => Ok(false),
-            Term::Var(v) => match self.vals[self.slot(*v)] {
-                None => Ok(false),
-                Some(Val::I(_)) => Ok(true),
-                Some(Val::T(Term::Float(_))) => Err(Halt::Bail),
-                // Only a compound value is walked for floats.
-                Some(Val::T(t @ Term::Compound(_))) if has_float(t) => Err(Halt::Bail),
-                Some(Val::T(_)) => Ok(true),
-            },
-            Term::Compound(c) => {
-                for a in c.args.iter() {
-                    if !self.ground_now(a, depth + 1)? {
-                        return Ok(false);
-                    }
-                }
-                Ok(true)
+    /// Whether the parts `args` are ground under the values bound now (looked at left to
+    /// right, up to the first unbound variable); `Bail` on a float (whose equality is not its
+    /// unifiability). By recursion: parts are at most [`MAX_INSTANCE_DEPTH`] deep.
+    fn ground_now(&self, args: &[Arg]) -> Result<bool, Halt> {
+        for a in args {
+            let ground = match a {
+                Arg::Anon => false,
+                Arg::Reg(k) => match self.vals[*k] {
+                    None => false,
+                    Some(Val::I(_)) => true,
+                    Some(Val::T(t)) if has_float(t) => return Err(Halt::Bail),
+                    Some(Val::T(_)) => true,
+                },
+                Arg::Compound(_, parts) => self.ground_now(parts)?,
+                Arg::Const(Term::Float(_)) => return Err(Halt::Bail),
+                Arg::Const(_) => true,
+            };
+            if !ground {
+                return Ok(false);
             }
-            Term::Float(_) => Err(Halt::Bail),
-            _ => Ok(true),
         }
+        Ok(true)
     }
 
     /// The pattern `p` under the values bound now, as a fact base looks it up (see
     /// [`Run::ground_now`]).
-    fn instance<'r>(&'r self, p: &'a Term) -> Instance<'a, impl Fn(Sym) -> Option<Value<'a>> + 'r> {
-        Instance::new(p, move |v| {
-            self.vals[self.slot(v)].map(|val| match val {
+    fn instance<'r>(
+        &'r self,
+        p: &'a Pattern,
+    ) -> Instance<'a, impl Fn(Sym) -> Option<Value<'a>> + 'r> {
+        Instance::new(&p.term, move |v| {
+            let k = self.plan.vars.iter().position(|w| *w == v)?;
+            self.vals[k].map(|val| match val {
                 Val::T(t) => Value::Term(t),
                 Val::I(i) => Value::Int(i),
             })
@@ -411,48 +396,56 @@ impl<'a> Run<'a> {
     /// Matches the pattern `p` against `fact`, binding the pattern's free variables in
     /// reading order; `Bail` when plain comparison cannot decide (a variable in the fact, a
     /// float, too many cells bound).
-    fn match_fact(&mut self, p: &'a Term, fact: &'a Term) -> Result<bool, Halt> {
-        let mut work: SmallVec<[(&'a Term, &'a Term); 8]> = smallvec![(p, fact)];
+    fn match_fact(&mut self, p: &'a Pattern, fact: &'a Term) -> Result<bool, Halt> {
+        let fc = match fact {
+            Term::Var(_) | Term::Float(_) => return Err(Halt::Bail),
+            Term::Compound(fc) if p.arity > 0 => fc,
+            // A pattern of no arguments is an atom: the fact is that atom or another term.
+            Term::Atom(a) => return Ok(p.arity == 0 && *a == p.name),
+            _ => return Ok(false),
+        };
+        if fc.name != p.name || fc.args.len() != p.args.len() {
+            return Ok(false);
+        }
+        let mut work: SmallVec<[(&'a Arg, &'a Term); 8]> =
+            p.args.iter().zip(fc.args.iter()).rev().collect();
         while let Some((p, f)) = work.pop() {
             match (p, f) {
                 (_, Term::Var(_)) => return Err(Halt::Bail),
-                (Term::Var(v), f) if *v == wk::UNDERSCORE => {
+                (Arg::Anon, f) => {
                     if !f.is_ground() {
                         return Err(Halt::Bail);
                     }
                 }
-                (Term::Var(v), f) => {
-                    let k = self.slot(*v);
-                    match self.vals[k] {
-                        Some(val) => {
-                            if !same(val, Val::T(f)).ok_or(Halt::Bail)? {
-                                return Ok(false);
-                            }
-                        }
-                        None => {
-                            self.cells += size_if_ground(f).ok_or(Halt::Bail)?;
-                            if self.cells > MAX_CELLS {
-                                return Err(Halt::Bail);
-                            }
-                            self.bind(k, Val::T(f));
+                (Arg::Reg(k), f) => match self.vals[*k] {
+                    Some(val) => {
+                        if !same(val, Val::T(f)).ok_or(Halt::Bail)? {
+                            return Ok(false);
                         }
                     }
-                }
-                (Term::Compound(pc), f) => {
+                    None => {
+                        self.cells += size_if_ground(f).ok_or(Halt::Bail)?;
+                        if self.cells > MAX_CELLS {
+                            return Err(Halt::Bail);
+                        }
+                        self.bind(*k, Val::T(f));
+                    }
+                },
+                (Arg::Compound(name, parts), f) => {
                     let Term::Compound(fc) = f else {
                         if matches!(f, Term::Float(_)) {
                             return Err(Halt::Bail);
                         }
                         return Ok(false);
                     };
-                    if pc.name != fc.name || pc.args.len() != fc.args.len() {
+                    if *name != fc.name || parts.len() != fc.args.len() {
                         return Ok(false);
                     }
                     // Reversed, so that the leftmost argument is matched first.
-                    work.extend(pc.args.iter().zip(fc.args.iter()).rev());
+                    work.extend(parts.iter().zip(fc.args.iter()).rev());
                 }
-                (Term::Float(_), _) | (_, Term::Float(_)) => return Err(Halt::Bail),
-                (p, f) => {
+                (Arg::Const(Term::Float(_)), _) | (_, Term::Float(_)) => return Err(Halt::Bail),
+                (Arg::Const(p), f) => {
                     if p != f {
                         return Ok(false);
                     }
@@ -461,10 +454,6 @@ impl<'a> Run<'a> {
         }
         Ok(true)
     }
-}
-
-fn is_anonymous(t: &Term) -> bool {
-    matches!(t, Term::Var(v) if *v == wk::UNDERSCORE)
 }
 
 /// Whether two ground values are equal, which for them is whether they unify; `None` when a
