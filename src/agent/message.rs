@@ -104,7 +104,7 @@ impl Core {
         for r in self.receivers(to, s)? {
             let known = self.known.knows(r);
             if !known && channels {
-                self.to_channel(r, &wrapped, &mut ev);
+                self.send_to_channel(r, &wrapped, &mut ev);
                 continue;
             }
             if !known {
@@ -148,7 +148,7 @@ impl Core {
 
     /// A message to channel `c`: sent to every agent marked with the channel; each keeps it
     /// only when subscribed (`timing.rs`), so the sender needs no one's subscriptions.
-    fn to_channel(&mut self, c: Sym, wrapped: &Term, ev: &mut Vec<Event>) {
+    fn send_to_channel(&mut self, c: Sym, wrapped: &Term, ev: &mut Vec<Event>) {
         if self.level >= TraceLevel::Changes {
             ev.push(Event::MessageSent {
                 to: c.name().to_string(),

@@ -335,6 +335,8 @@ impl Book {
     /// An acknowledgement from `from` (the partner) to `to` (the initiator).
     fn answer(&mut self, from: Sym, to: Sym, a: Answer, text: &str, tick: u64) -> Option<Change> {
         use SpeechAct::*;
+        // A table of the answers that fit a session, one row per case: clearer than `matches!`.
+        #[allow(clippy::match_like_matches_macro)]
         let fits = |s: &Session| match (a, s.kind, s.state) {
             (Answer::Ok, Request | RequestWhen | Query, State::Open) => true,
             (Answer::Accept | Answer::Refuse, Request | RequestWhen | Offer, State::Open) => true,

@@ -283,7 +283,7 @@ pub fn tokenize_with(
                 match i64::from_str_radix(&slice[2..], radix) {
                     Ok(i) => Tok::Int(i),
                     Err(_) => Tok::BigInt(
-                        num_bigint::BigInt::parse_bytes(slice[2..].as_bytes(), radix)
+                        num_bigint::BigInt::parse_bytes(&slice.as_bytes()[2..], radix)
                             .unwrap_or_default(),
                     ),
                 }

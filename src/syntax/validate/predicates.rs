@@ -198,7 +198,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
                     k.0, k.1
                 ),
                 span.clone(),
-                &undefined_hint(&k.0, k.1, &u),
+                undefined_hint(&k.0, k.1, &u),
             );
         }
     }
