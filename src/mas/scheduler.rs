@@ -115,11 +115,19 @@ fn parts(jobs: &[Job], agents: usize, threads: usize) -> Vec<Part> {
         .collect()
 }
 
-/// How many cycles of a shared round have finished, and the first failure.
+/// How many cycles of a shared round have finished, and the failure of the agent with the
+/// lowest index (the same whichever thread ran which agent).
 #[derive(Default)]
 struct Ended {
     finished: usize,
-    error: Option<PoolError>,
+    error: Option<(usize, PoolError)>,
+}
+
+/// Keeps in `slot` the failure of the lower agent index of it and `(i, e)`.
+fn keep_lowest(slot: &mut Option<(usize, PoolError)>, i: usize, e: PoolError) {
+    if slot.as_ref().is_none_or(|(j, _)| i < *j) {
+        *slot = Some((i, e));
+    }
 }
 
 /// Locks `m`, also after a panic while it was held: nothing here panics holding these locks
@@ -164,9 +172,7 @@ impl Round {
                     let i = job.0;
                     match run_one(agents, self.clock, job) {
                         Ok(out) => *lock(cell) = Cycle::Done(i, out),
-                        Err(e) => {
-                            error.get_or_insert(e);
-                        }
+                        Err(e) => keep_lowest(&mut error, i, e),
                     }
                 }
                 count += to - from;
@@ -176,8 +182,8 @@ impl Round {
             return;
         }
         let mut e = lock(&self.ended);
-        if let Some(err) = error {
-            e.error.get_or_insert(err);
+        if let Some((i, err)) = error {
+            keep_lowest(&mut e.error, i, err);
         }
         e.finished += count;
         self.finished.store(e.finished, Ordering::Release);
@@ -200,7 +206,7 @@ impl Round {
         while e.finished < n {
             e = self.all_done.wait(e).unwrap_or_else(|e| e.into_inner());
         }
-        if let Some(err) = e.error.take() {
+        if let Some((_, err)) = e.error.take() {
             return Err(err);
         }
         drop(e);
@@ -538,6 +544,21 @@ mod tests {
         // A thread that comes late finds nothing left and changes nothing.
         round.work(&pool.agents, 2);
         assert_eq!(round.finished.load(Ordering::Relaxed), n);
+    }
+
+    #[test]
+    fn a_round_with_several_failures_reports_the_lowest_agent_whichever_thread_ran_it() {
+        // Five agents; jobs for agents 7 and 12 fail (no such agent). Split for three threads
+        // of 16 agents, the parts are 0-5, 6-10 and 11-15.
+        let pool = Pool::new(agents(5), 1).expect("pool");
+        let jobs = || -> Vec<Job> { [0, 7, 12].map(|i| (i, Vec::new(), Vec::new())).into() };
+        for first in 0..3 {
+            let round = Round::new(&mut jobs(), None, 16, 3);
+            // Thread `first` comes first and runs every part, its own first.
+            round.work(&pool.agents, first);
+            let err = round.wait(&mut Vec::new()).expect_err("two jobs fail");
+            assert!(err.0.contains("index 7"), "thread {first} first: {}", err.0);
+        }
     }
 
     #[test]
