@@ -1,8 +1,8 @@
 //! Calling a goal: built-ins through their table, user predicates by their clauses (first
 //! argument indexing, head matching, the first body goal called at once without a frame).
 
-use super::code::{Key, UNSET};
-use super::machine::{Alt, Frame, Goal, Solver, NONE};
+use super::code::{Code, Key, UNSET};
+use super::machine::{Alt, Frame, Goal, Machine, Solver, NONE};
 use super::store::{Cell, VarNames};
 use crate::kr::error::{KrError, KrResult};
 use crate::kr::knowledge::{Pred, PredRef};
@@ -336,32 +336,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             nx = m.frames.len() as u32 - 1;
         }
         if let Some(pred) = direct {
-            // Arguments without structures go to the registers (fresh variables are made in
-            // the order a block copy would make them); others are built as a block.
-            let args = match cl.code.flat_args(cl.body[0]) {
-                Some(cells) if cells.len() <= MAX_REGS => {
-                    for (i, &c) in cells.iter().enumerate() {
-                        m.regs.0[i] = match c {
-                            // By value: a copy made field by field and read back whole
-                            // stalls the store-to-load forwarding.
-                            Cell::Ref(k) if (k as usize) < m.slots.len() => {
-                                let v = m.slots[k as usize];
-                                if let Cell::Ref(u32::MAX) = v {
-                                    let v = m.st.new_var();
-                                    m.slots[k as usize] = v;
-                                    v
-                                } else {
-                                    v
-                                }
-                            }
-                            Cell::Atom(_) | Cell::Int(_) | Cell::Flt(_) => c,
-                            _ => cl.code.build(&mut m.st, c, &mut m.slots),
-                        };
-                    }
-                    Args::Regs
-                }
-                _ => Args::Heap(cl.code.build_args(&mut m.st, cl.body[0], &mut m.slots)),
-            };
+            let args = place_args(m, &cl.code, cl.body[0]);
             self.direct = Some(Direct {
                 pred,
                 args,
@@ -372,4 +347,33 @@ impl<'a, 'm> Solver<'a, 'm> {
         self.cont = nx;
         true
     }
+}
+
+/// Places the arguments of the compiled goal `goal` for a call: in the argument registers
+/// when none is a structure (fresh variables are made in the order a block copy would make
+/// them), else built as a block on the heap.
+#[inline]
+fn place_args(m: &mut Machine, code: &Code, goal: Cell) -> Args {
+    let Some(cells) = code.flat_args(goal).filter(|c| c.len() <= MAX_REGS) else {
+        return Args::Heap(code.build_args(&mut m.st, goal, &mut m.slots));
+    };
+    for (i, &c) in cells.iter().enumerate() {
+        m.regs.0[i] = match c {
+            // By value: a copy made field by field and read back whole stalls the
+            // store-to-load forwarding.
+            Cell::Ref(k) if (k as usize) < m.slots.len() => {
+                let v = m.slots[k as usize];
+                if let Cell::Ref(u32::MAX) = v {
+                    let v = m.st.new_var();
+                    m.slots[k as usize] = v;
+                    v
+                } else {
+                    v
+                }
+            }
+            Cell::Atom(_) | Cell::Int(_) | Cell::Flt(_) => c,
+            _ => code.build(&mut m.st, c, &mut m.slots),
+        };
+    }
+    Args::Regs
 }
