@@ -174,9 +174,7 @@ pub fn evaluate(
                     // The last answer under a theta extends that theta itself (it is not
                     // needed again: a level that ends empty took none).
                     let mut t = std::mem::take(theta);
-                    for (v, x) in a.iter() {
-                        t.bind(v, x.clone());
-                    }
+                    t.extend(&a);
                     t
                 } else {
                     compose(theta, &a)

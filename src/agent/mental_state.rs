@@ -228,11 +228,7 @@ impl MentalState {
                             cut = true;
                             break 'each;
                         }
-                        let mut s = theta.clone();
-                        for (v, t) in a.iter() {
-                            s.bind(v, t.clone());
-                        }
-                        next.push(s);
+                        next.push(theta.extended(&a));
                     }
                 }
             }
@@ -448,7 +444,7 @@ impl MentalState {
             return false;
         };
         !self.knowledge.resolves(name, arity)
-            && !self.bases().iter().any(|b| b.has_predicate(name, arity))
+            && !self.bases().iter().any(|b| b.has_pred(name, arity))
     }
 
     /// The fact bases a belief query reads, in the engine's order.

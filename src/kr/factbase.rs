@@ -319,11 +319,6 @@ impl FactBase {
         })
     }
 
-    /// True when the base holds at least one fact of `name/arity`.
-    pub fn has_predicate(&self, name: Sym, arity: usize) -> bool {
-        self.has_pred(name, arity)
-    }
-
     /// The facts of predicate `name/arity` in insertion order.
     pub fn facts_of(&self, name: Sym, arity: usize) -> impl Iterator<Item = &Term> + '_ {
         let start = self

@@ -61,10 +61,15 @@ impl Subst {
         let mut bindings = Vec::with_capacity(self.bindings.len() + more.bindings.len());
         bindings.extend_from_slice(&self.bindings);
         let mut s = Subst { bindings };
-        for (v, t) in more.iter() {
-            s.bind(v, t.clone());
-        }
+        s.extend(more);
         s
+    }
+
+    /// Adds the bindings of `more` (replacing bindings of the same variables).
+    pub fn extend(&mut self, more: &Subst) {
+        for (v, t) in more.iter() {
+            self.bind(v, t.clone());
+        }
     }
 
     /// Removes the binding of `var`.
