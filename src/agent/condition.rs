@@ -209,6 +209,37 @@ pub fn evaluate(
     })
 }
 
+/// True when the condition `lits` provably has no answer under `theta` without running it:
+/// its first literal is a positive `bel` of a fact pattern (a predicate no knowledge clause or
+/// built-in answers) and no fact base holds a fact of that predicate.
+///
+/// Exact: nothing runs before the first literal, so no error of a later literal is hidden,
+/// and the first literal would be answered by its plan (the limits are roomy, `theta` binds
+/// only atoms, integers and strings, so the plan neither bails on a float nor hands a
+/// non-ground binding to the engine), whose first step matches facts of that predicate base
+/// by base, finding none: no answer, no error, no cut, no random draw.
+pub fn first_lookup_fails(ms: &MentalState, lits: &[Lit], theta: &Subst) -> bool {
+    let Some(Lit::Mental {
+        negated: false,
+        about: None,
+        op: MentalOp::Bel,
+        query,
+        plan,
+        ..
+    }) = lits.first()
+    else {
+        return false;
+    };
+    let Some((name, arity)) = plan.get(query, &ms.knowledge).and_then(|p| p.first_fact()) else {
+        return false;
+    };
+    !ms.bases().iter().any(|b| b.has_pred(name, arity))
+        && theta
+            .iter()
+            .all(|(_, t)| matches!(t, Term::Atom(_) | Term::Int(_) | Term::Str(_)))
+        && ms.native_roomy()
+}
+
 /// The variables some answer of `answers` binds (usually all bind the same ones).
 fn bound_by_any(answers: &[Subst]) -> SmallVec<[Sym; 8]> {
     let mut vars = SmallVec::new();
@@ -458,4 +489,59 @@ pub fn show_subst(s: &Subst) -> String {
         parts.push(format!("{name}={}", s.apply(t)));
     }
     parts.join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::agent::cycle::{Agent, AgentConfig};
+    use crate::agent::program::Program;
+
+    /// For each rule of the main module of `src` after one cycle (in which no rule applies):
+    /// whether its evaluation is skipped, and what evaluating it gives (answers or error).
+    fn skipped_and_evaluated(src: &str) -> Vec<(bool, Result<usize, String>)> {
+        let prog = Program::from_source("t.goal", src).expect("compiles");
+        let mut a = Agent::new(prog.clone(), "a", AgentConfig::default());
+        a.step(&[], &[]);
+        assert!(a.stopped().is_none(), "{:?}", a.stopped());
+        let ms = a.mental_state();
+        let block = prog.modules[prog.main].block;
+        let theta = Subst::new();
+        prog.blocks[block]
+            .rules
+            .iter()
+            .map(|r| {
+                let skip = first_lookup_fails(ms, &r.cond, &theta);
+                let cx = CondCtx { ms, only: None };
+                let e = evaluate(&cx, &r.cond, &theta, usize::MAX);
+                (skip, e.map(|e| e.answers.len()).map_err(|f| f.message))
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_condition_is_skipped_only_when_its_first_lookup_has_no_facts() {
+        let found = skipped_and_evaluated(
+            "init module { knowledge { k(X) :- f(X). } beliefs { f(1). } }
+             main module { program {
+                if bel(none(X), Y is X + Z) then print(a).
+                if bel(received(S, hello)) then print(b).
+                if bel(f(X), X > 5) then print(c).
+                if bel(k(X), X > 5) then print(d).
+                if not(bel(none(X))), bel(f(2)) then print(e).
+                if bel(f(X), Y is X + Z) then print(g).
+             } }",
+        );
+        // Rules 1 and 2 read a predicate without facts first: skipped, and indeed without
+        // answers (rule 1's arithmetic, which would raise an error, is never reached).
+        assert_eq!(found[0], (true, Ok(0)));
+        assert_eq!(found[1], (true, Ok(0)));
+        // A first lookup with facts, one knowledge answers, a negation: evaluated.
+        assert_eq!(found[2], (false, Ok(0)));
+        assert_eq!(found[3], (false, Ok(0)));
+        assert_eq!(found[4], (false, Ok(0)));
+        // The same arithmetic after a lookup with a fact raises its error: not skipped.
+        assert!(!found[5].0);
+        assert!(found[5].1.is_err(), "{:?}", found[5]);
+    }
 }

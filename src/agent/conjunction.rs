@@ -170,6 +170,15 @@ impl Plan {
         run::answers(self, &ms.bases(), theta, cap)
     }
 
+    /// The predicate of the plan's first conjunct when it is a fact pattern (a predicate only
+    /// facts answer, matched before anything else runs).
+    pub fn first_fact(&self) -> Option<(Sym, usize)> {
+        match self.steps.first()? {
+            Step::Fact(p) => Some((p.name, p.arity)),
+            _ => None,
+        }
+    }
+
     /// [`Plan::answers`] over the fact bases `bases` (the caller checked the limits).
     pub fn answers_in(
         &self,

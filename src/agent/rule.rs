@@ -1,7 +1,7 @@
 //! Rule kinds: computing the answers a rule body runs for (`if`: shuffled, one acting answer;
 //! `forall`: all answers computed up front; `listall`: one answer binding the list).
 
-use super::condition::{evaluate, show_subst, CondCtx};
+use super::condition::{evaluate, first_lookup_fails, show_subst, CondCtx};
 use super::cycle::Core;
 use super::error::Fault;
 use super::goals::Goal;
@@ -31,6 +31,11 @@ impl Core {
         base: &Subst,
         file: &str,
     ) -> Result<Vec<Answer>, Fault> {
+        if self.why.is_none() && first_lookup_fails(&self.ms, &rule.cond, base) {
+            // Inapplicable without running the condition (exactly: see the function).
+            self.evaluated(rule, 0);
+            return Ok(Vec::new());
+        }
         let cap = match rule.kind {
             RuleKind::If => IF_ANSWERS,
             RuleKind::Forall | RuleKind::Listall(_) => usize::MAX,
@@ -87,12 +92,7 @@ impl Core {
         if let Some(w) = &self.why {
             w.answers(answers.len());
         }
-        if self.level >= TraceLevel::Rules {
-            self.event(Event::RuleEvaluated {
-                rule: rule.label.to_string(),
-                answers: answers.len(),
-            });
-        }
+        self.evaluated(rule, answers.len());
         match &rule.kind {
             RuleKind::If => answers.shuffle(&mut self.rng),
             RuleKind::Forall => {}
@@ -138,6 +138,16 @@ impl Core {
                 rule.label
             ),
         });
+    }
+
+    /// Records that a rule's condition was evaluated, with its number of answers.
+    fn evaluated(&mut self, rule: &RuleDef, answers: usize) {
+        if self.level >= TraceLevel::Rules {
+            self.event(Event::RuleEvaluated {
+                rule: rule.label.to_string(),
+                answers,
+            });
+        }
     }
 
     /// Records that a rule's body runs for an answer.
