@@ -16,8 +16,8 @@ pub fn compose(base: &Subst, answer: &Subst) -> Subst {
     base.extended(answer)
 }
 
-/// The answers of one literal: mostly none or one, kept inline.
-type Found = super::conjunction::Answers;
+/// The answers of a literal or a condition: mostly none or one, kept inline.
+pub type Found = super::conjunction::Answers;
 
 /// An insertion-ordered set of answers: while small, each answer is compared with the others
 /// directly; beyond that its hash is compared first (a linear scan of hashes, then a hash
@@ -124,16 +124,16 @@ pub fn eval_upto(
     cap: usize,
 ) -> Result<(Vec<Subst>, bool), Fault> {
     let e = evaluate(cx, lits, base, cap)?;
-    Ok((e.answers, e.cut))
+    Ok((e.answers.into_vec(), e.cut))
 }
 
 /// A condition evaluated: its answers, whether `cap` cut them, and where it failed.
 pub struct Evaluation {
-    pub answers: Vec<Subst>,
+    pub answers: Found,
     pub cut: bool,
     /// The first literal without answers (its index) and the answers of the literals before
     /// it; `None` when the condition holds.
-    pub failed: Option<(usize, Vec<Subst>)>,
+    pub failed: Option<(usize, Found)>,
 }
 
 /// [`eval_upto`], also telling which literal failed (`goal why` shows it; costs nothing more:
@@ -145,7 +145,7 @@ pub fn evaluate(
     cap: usize,
 ) -> Result<Evaluation, Fault> {
     let mut cut = false;
-    let mut answers: Vec<Subst> = Vec::new();
+    let mut answers = Found::new();
     // The first literal's only theta: `base` (mostly empty, so a copy costs nothing).
     let mut first = [base.clone()];
     for (i, lit) in lits.iter().enumerate() {
@@ -188,16 +188,16 @@ pub fn evaluate(
         }
         if next.items.is_empty() {
             let before = match i {
-                0 => vec![base.clone()],
+                0 => smallvec![base.clone()],
                 _ => answers,
             };
             return Ok(Evaluation {
-                answers: Vec::new(),
+                answers: Found::new(),
                 cut,
                 failed: Some((i, before)),
             });
         }
-        answers = next.items.into_vec();
+        answers = next.items;
     }
     if lits.is_empty() {
         answers.push(base.clone());

@@ -8,7 +8,7 @@ use super::cycle::Core;
 use super::error::{Fault, RuntimeError};
 use super::goals::{Goal, GoalBase};
 use super::program::{Act, Body, ModuleDef, Program};
-use super::rule::Answer;
+use super::rule::{Answer, Answers};
 use super::trace::{Event, TraceLevel};
 use super::watch::Observed;
 use crate::syntax::ast::{ExitCondition, Focus, Order};
@@ -36,7 +36,7 @@ pub struct ModFrame {
 pub struct RuleFrame {
     pub block: usize,
     pub rule: usize,
-    pub answers: Vec<Answer>,
+    pub answers: Answers,
     pub next: usize,
     pub acted: bool,
 }

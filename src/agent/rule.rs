@@ -9,6 +9,7 @@ use super::program::{RuleDef, RuleKind};
 use super::trace::{Event, TraceLevel};
 use crate::term::{Subst, Sym, Term};
 use rand::seq::SliceRandom;
+use smallvec::{smallvec, SmallVec};
 
 /// One answer of a rule condition, with the goals that produced it (for focus=select).
 #[derive(Clone, Debug)]
@@ -16,6 +17,9 @@ pub struct Answer {
     pub subst: Subst,
     pub goals: Vec<Goal>,
 }
+
+/// The answers a rule's body runs for: mostly none or one, kept inline.
+pub type Answers = SmallVec<[Answer; 1]>;
 
 /// Most answers of its condition an `if` rule considers: the condition's evaluation stops
 /// there (with a warning), so a generator with infinitely many answers (`between(1, inf, X)`,
@@ -30,18 +34,18 @@ impl Core {
         rule: &RuleDef,
         base: &Subst,
         file: &str,
-    ) -> Result<Vec<Answer>, Fault> {
+    ) -> Result<Answers, Fault> {
         if self.why.is_none() && first_lookup_fails(&self.ms, &rule.cond, base) {
             // Inapplicable without running the condition (exactly: see the function).
             self.evaluated(rule, 0);
-            return Ok(Vec::new());
+            return Ok(Answers::new());
         }
         let cap = match rule.kind {
             RuleKind::If => IF_ANSWERS,
             RuleKind::Forall | RuleKind::Listall(_) => usize::MAX,
         };
         let mut cut = false;
-        let mut answers: Vec<Answer> = Vec::new();
+        let mut answers = Answers::new();
         if rule.per_goal {
             // focus=select: evaluate per single goal and remember which goals gave each answer.
             let goals = self.ms.attention.current().goals().to_vec();
@@ -114,7 +118,7 @@ impl Core {
                     .collect();
                 let mut s = base.clone();
                 s.bind(*v, Term::list(items));
-                return Ok(vec![Answer {
+                return Ok(smallvec![Answer {
                     subst: s,
                     goals: Vec::new(),
                 }]);
