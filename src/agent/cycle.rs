@@ -55,6 +55,21 @@ pub struct CycleOutput {
     pub skipped: bool,
 }
 
+impl CycleOutput {
+    /// True when nothing was recorded: the output equals [`CycleOutput::default`].
+    fn is_clear(&self) -> bool {
+        self.env_actions.is_empty()
+            && self.messages.is_empty()
+            && self.events.is_empty()
+            && self.printed.is_empty()
+            && self.stopped.is_none()
+            && self.actions == 0
+            && self.env_sites.is_empty()
+            && !self.waiting
+            && !self.skipped
+    }
+}
+
 /// How to create an agent.
 #[derive(Clone, Debug)]
 pub struct AgentConfig {
@@ -467,7 +482,11 @@ impl Agent {
         if let Some(w) = &self.core.why {
             w.begin(self.cycle);
         }
-        self.core.out = CycleOutput::default();
+        // The last step handed its output over (taken): only something recorded between
+        // steps (an aborted task's error) is left to drop.
+        if !self.core.out.is_clear() {
+            self.core.out = CycleOutput::default();
+        }
         let quota_end = self
             .core
             .cycle_time
@@ -542,7 +561,9 @@ impl Agent {
     fn begin_cycle(&mut self, deadline: Option<Instant>) {
         self.core.deadline = deadline;
         self.core.ms.engine.borrow_mut().set_deadline(deadline);
-        self.core.event(Event::CycleStart { cycle: self.cycle });
+        if self.core.level >= TraceLevel::Changes {
+            self.core.event(Event::CycleStart { cycle: self.cycle });
+        }
     }
 
     /// Moves what the KR engine printed this cycle into the cycle's output, line by line.

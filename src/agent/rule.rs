@@ -145,6 +145,7 @@ impl Core {
     }
 
     /// Records that a rule's condition was evaluated, with its number of answers.
+    #[inline]
     fn evaluated(&mut self, rule: &RuleDef, answers: usize) {
         if self.level >= TraceLevel::Rules {
             self.event(Event::RuleEvaluated {
