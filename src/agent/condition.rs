@@ -144,6 +144,9 @@ pub fn evaluate(
     base: &Subst,
     cap: usize,
 ) -> Result<Evaluation, Fault> {
+    if let ([lit], true) = (lits, base.is_empty()) {
+        return evaluate_one(cx, lit, base, cap);
+    }
     let mut cut = false;
     let mut answers = Found::new();
     // The first literal's only theta: `base` (mostly empty, so a copy costs nothing).
@@ -246,6 +249,28 @@ pub fn first_lookup_fails(ms: &MentalState, lits: &[Lit], theta: &Subst) -> bool
             .iter()
             .all(|(_, t)| matches!(t, Term::Atom(_) | Term::Int(_) | Term::Str(_)))
         && ms.native_roomy()
+}
+
+/// [`evaluate`] of a condition of one literal under the empty substitution: the literal's
+/// answers are the condition's (distinct, as a literal's are), the first `cap` of them.
+fn evaluate_one(
+    cx: &CondCtx<'_>,
+    lit: &Lit,
+    base: &Subst,
+    cap: usize,
+) -> Result<Evaluation, Fault> {
+    let mut cut = false;
+    let mut answers = literal(cx, lit, base, cap, &mut cut)?;
+    if answers.len() > cap {
+        answers.truncate(cap);
+        cut = true;
+    }
+    let failed = answers.is_empty().then(|| (0, smallvec![base.clone()]));
+    Ok(Evaluation {
+        answers,
+        cut,
+        failed,
+    })
 }
 
 /// The variables some answer of `answers` binds (usually all bind the same ones).
@@ -526,6 +551,38 @@ mod tests {
                 (skip, e.map(|e| e.answers.len()).map_err(|f| f.message))
             })
             .collect()
+    }
+
+    #[test]
+    fn a_condition_of_one_literal_answers_as_the_general_evaluation() {
+        let prog = Program::from_source(
+            "t.goal",
+            "init module { beliefs { f(1). f(2). f(3). } }
+             main module { program {
+                if bel(f(X)) then print(X).
+                if bel(f(X)), bel(true) then print(X).
+                if bel(g(X)) then print(X).
+                if bel(g(X)), bel(true) then print(X).
+             } }",
+        )
+        .expect("compiles");
+        let mut a = Agent::new(prog.clone(), "a", AgentConfig::default());
+        a.step(&[], &[]);
+        let cx = CondCtx {
+            ms: a.mental_state(),
+            only: None,
+        };
+        let rules = &prog.blocks[prog.modules[prog.main].block].rules;
+        let theta = Subst::new();
+        for (one, general) in [(0, 1), (2, 3)] {
+            for cap in [1, 2, 3, 4, usize::MAX] {
+                let e1 = evaluate(&cx, &rules[one].cond, &theta, cap).expect("evaluates");
+                let e2 = evaluate(&cx, &rules[general].cond, &theta, cap).expect("evaluates");
+                assert_eq!((e1.answers, e1.cut), (e2.answers, e2.cut), "cap {cap}");
+                let failed = |e: Option<(usize, Found)>| e.map(|(i, before)| (i, before.len()));
+                assert_eq!(failed(e1.failed), failed(e2.failed), "cap {cap}");
+            }
+        }
     }
 
     #[test]

@@ -213,12 +213,18 @@ impl Core {
     }
 
     /// Applies a percept batch to the percept base and records what changed.
+    #[inline]
     pub fn perceive(&mut self, percepts: &[Term], types: &PerceptTypes, keep_batch: bool) {
         let p = &self.ms.percepts;
         if percepts.is_empty() && p.facts().is_empty() && p.batch().is_empty() {
             // Nothing to replace or remove: most cycles of agents without an environment.
             return;
         }
+        self.perceive_batch(percepts, types, keep_batch);
+    }
+
+    /// [`Core::perceive`] when there is something to replace or remove.
+    fn perceive_batch(&mut self, percepts: &[Term], types: &PerceptTypes, keep_batch: bool) {
         let record = self.level >= TraceLevel::Changes;
         let ch = self.ms.percepts.apply(percepts, types, keep_batch, record);
         for p in ch.removed.iter() {
