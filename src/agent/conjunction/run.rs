@@ -274,21 +274,11 @@ impl<'a> Run<'a> {
             Expr::Bin(op, x, y) => {
                 let x = self.eval(x)?;
                 let y = self.eval(y)?;
-                match op {
-                    Op::Add => x.checked_add(y),
-                    Op::Sub => x.checked_sub(y),
-                    Op::Mul => x.checked_mul(y),
-                    Op::IntDiv if y != 0 => x.checked_div(y),
-                    Op::Mod if y != 0 => x.checked_rem(y).map(|r| {
-                        if r != 0 && (r < 0) != (y < 0) {
-                            r + y
-                        } else {
-                            r
-                        }
-                    }),
-                    _ => None,
-                }
-                .ok_or(Halt::Bail)
+                apply(*op, x, y).ok_or(Halt::Bail)
+            }
+            Expr::RegInt(op, k, y) => {
+                let x = self.vals[*k].and_then(Val::int).ok_or(Halt::Bail)?;
+                apply(*op, x, *y).ok_or(Halt::Bail)
             }
         }
     }
@@ -453,6 +443,25 @@ impl<'a> Run<'a> {
             }
         }
         Ok(true)
+    }
+}
+
+/// The binary operator `op` on `x` and `y`; `None` on an overflow or a zero divisor (the
+/// engine then raises its error).
+fn apply(op: Op, x: i64, y: i64) -> Option<i64> {
+    match op {
+        Op::Add => x.checked_add(y),
+        Op::Sub => x.checked_sub(y),
+        Op::Mul => x.checked_mul(y),
+        Op::IntDiv if y != 0 => x.checked_div(y),
+        Op::Mod if y != 0 => x.checked_rem(y).map(|r| {
+            if r != 0 && (r < 0) != (y < 0) {
+                r + y
+            } else {
+                r
+            }
+        }),
+        _ => None,
     }
 }
 
