@@ -155,10 +155,22 @@ pub fn evaluate(
         };
         let mut next = AnswerSet::default();
         let bound = bound_by_any(level);
+        // A planned `bel` literal runs its plan under each theta into one buffer.
+        let batch = planned(cx, lit);
+        let mut found = Found::new();
         'each: for theta in level.iter_mut() {
-            let found = literal(cx, lit, theta, cap, &mut cut)?;
+            match batch
+                .as_ref()
+                .and_then(|b| b.answers_into(theta, cap, &mut found))
+            {
+                Some(stopped) => {
+                    cut |= stopped;
+                    distinct(&mut found);
+                }
+                None => found = literal(cx, lit, theta, cap, &mut cut)?,
+            }
             let count = found.len();
-            for (j, a) in found.into_iter().enumerate() {
+            for (j, a) in found.drain(..).enumerate() {
                 if next.items.len() >= cap {
                     cut = true;
                     break 'each;
@@ -207,6 +219,35 @@ pub fn evaluate(
         cut,
         failed: None,
     })
+}
+
+/// The plan of `lit` ready for the thetas of a level, when it is a positive `bel` literal
+/// about this agent with a plan.
+fn planned<'a>(cx: &CondCtx<'a>, lit: &'a Lit) -> Option<super::conjunction::Batch<'a>> {
+    let Lit::Mental {
+        negated: false,
+        about: None,
+        op: MentalOp::Bel,
+        query,
+        plan,
+        ..
+    } = lit
+    else {
+        return None;
+    };
+    super::conjunction::Batch::new(plan.get(query, &cx.ms.knowledge)?, cx.ms)
+}
+
+/// `found` without repeated answers (a plan, as the engine, reports an answer once for each
+/// way it was found).
+fn distinct(found: &mut Found) {
+    if found.len() > 1 {
+        let mut set = AnswerSet::default();
+        for a in found.drain(..) {
+            set.push(a);
+        }
+        *found = set.items;
+    }
 }
 
 /// The variables some answer of `answers` binds (usually all bind the same ones).
@@ -265,13 +306,9 @@ fn literal(
                 }
             };
             *cut |= stopped;
-            if found.len() == 1 {
-                raw.items = found;
-            } else {
-                for a in found {
-                    raw.push(a);
-                }
-            }
+            let mut found = found;
+            distinct(&mut found);
+            raw.items = found;
         }
         (MentalOp::Goal | MentalOp::AGoal | MentalOp::GoalA, None) => {
             // The query's instance is matched in place when `theta` allows (no copy made).

@@ -16,7 +16,10 @@ use crate::term::{well_known as wk, Subst, Sym, Term};
 use smallvec::{smallvec, SmallVec};
 use std::sync::{Arc, OnceLock, Weak};
 
+mod batch;
 mod run;
+
+pub use batch::Batch;
 
 /// The answers of a plan: mostly none or one, kept inline.
 pub type Answers = SmallVec<[Subst; 1]>;

@@ -12,6 +12,20 @@ pub(super) fn answers(
     theta: &Subst,
     cap: usize,
 ) -> Option<(Answers, bool)> {
+    let mut out = Answers::new();
+    let cut = answers_into(plan, bases, theta, cap, &mut out)?;
+    Some((out, cut))
+}
+
+/// [`answers`] added to `out` (empty when called); `None` (and `out` left with some answers
+/// perhaps): the engine answers.
+pub(super) fn answers_into(
+    plan: &Plan,
+    bases: &[&FactBase],
+    theta: &Subst,
+    cap: usize,
+    out: &mut Answers,
+) -> Option<bool> {
     let mut run = Run {
         plan,
         bases,
@@ -22,7 +36,7 @@ pub(super) fn answers(
         steps: 0,
         cells: 0,
         cap,
-        out: Answers::new(),
+        out,
     };
     for (i, v) in plan.vars.iter().enumerate() {
         let val = theta.get(*v);
@@ -36,10 +50,7 @@ pub(super) fn answers(
     }
     match run.solve(0) {
         // As the engine reports it: stopped when `cap` answers were reached.
-        Ok(()) | Err(Halt::Cap) => {
-            let cut = run.out.len() >= cap;
-            Some((run.out, cut))
-        }
+        Ok(()) | Err(Halt::Cap) => Some(run.out.len() >= cap),
         Err(Halt::Bail) => None,
     }
 }
@@ -89,7 +100,7 @@ type Go = Result<(), Halt>;
 
 /// One run of a plan: the variables' values (by the plan's order), the trail of those bound
 /// since, and the budget spent.
-struct Run<'a> {
+struct Run<'a, 'o> {
     plan: &'a Plan,
     bases: &'a [&'a FactBase],
     vals: [Option<Val<'a>>; MAX_VARS],
@@ -102,10 +113,10 @@ struct Run<'a> {
     steps: usize,
     cells: usize,
     cap: usize,
-    out: Answers,
+    out: &'o mut Answers,
 }
 
-impl<'a> Run<'a> {
+impl<'a> Run<'a, '_> {
     /// Runs conjuncts `i..` under the values bound so far, adding each answer.
     fn solve(&mut self, i: usize) -> Go {
         let plan = self.plan;
@@ -312,7 +323,7 @@ impl<'a> Run<'a> {
     /// Calls `then` once for each fact that matches the pattern `p` (with the pattern's free
     /// variables bound to the fact's parts), in the engine's order: base by base, each in
     /// insertion order.
-    fn each_match(&mut self, p: &'a Pattern, then: &mut dyn FnMut(&mut Run<'a>) -> Go) -> Go {
+    fn each_match(&mut self, p: &'a Pattern, then: &mut dyn FnMut(&mut Self) -> Go) -> Go {
         let (name, arity) = (p.name, p.arity);
         let bases = self.bases;
         // A ground instance is looked up by hash, as the engine looks up a ground fact.
