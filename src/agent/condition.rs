@@ -437,12 +437,24 @@ fn goal_fact_answers(
     let distinct = positions
         .iter()
         .all(|&i| goals[i as usize].facts.len() == 1);
+    // The fact of a one-fact goal the goal mark knows not believed needs no lookup.
+    let maybe = match std::ptr::eq(base, ms.attention.current()) {
+        true => ms.goals_maybe_believed(),
+        false => None,
+    };
     raw.items.reserve(positions.len());
     for &i in positions {
-        let facts = goals[i as usize].facts.iter();
-        for fact in facts.filter(|f| f.functor() == Some((name, arity))) {
+        let goal = &goals[i as usize];
+        let unbelieved =
+            goal.facts.len() == 1 && maybe.as_ref().is_some_and(|m| m.binary_search(&i).is_err());
+        for fact in goal
+            .facts
+            .iter()
+            .filter(|f| f.functor() == Some((name, arity)))
+        {
             let mut a = Subst::with_capacity(arity);
-            if !gq.match_fact(fact, &mut a) || holders.iter().any(|b| b.contains(fact)) != believed
+            if !gq.match_fact(fact, &mut a)
+                || (!unbelieved && holders.iter().any(|b| b.contains(fact))) != believed
             {
                 continue;
             }
@@ -457,6 +469,14 @@ fn goal_fact_answers(
 
 /// True when `t` has the anonymous variable `_`.
 fn has_anonymous(t: &Term) -> bool {
+    let anonymous =
+        |a: &Term| matches!(a, Term::Var(v) if *v == crate::term::well_known::UNDERSCORE);
+    // A query of atomic arguments (the usual `fib(N)`) is looked at without a work stack.
+    if let Term::Compound(c) = t {
+        if !c.args.iter().any(|a| matches!(a, Term::Compound(_))) {
+            return c.args.iter().any(anonymous);
+        }
+    }
     let mut stack: SmallVec<[&Term; 16]> = SmallVec::new();
     stack.push(t);
     while let Some(t) = stack.pop() {

@@ -38,15 +38,17 @@ pub(super) fn answers_into(
         cap,
         out,
     };
-    for (i, v) in plan.vars.iter().enumerate() {
-        let val = theta.get(*v);
-        if let Some(t) = val {
-            if matches!(t, Term::Compound(_) | Term::Var(_)) && !t.is_ground() {
-                return None;
-            }
-            run.given |= 1 << i;
+    // Each binding of `theta` placed in its variable's register (a look for each binding, not
+    // one through `theta` for each variable: `theta` binds few).
+    for (v, t) in theta.iter() {
+        let Some(i) = plan.vars.iter().position(|w| *w == v) else {
+            continue;
+        };
+        if matches!(t, Term::Compound(_) | Term::Var(_)) && !t.is_ground() {
+            return None;
         }
-        run.vals[i] = val.map(Val::T);
+        run.given |= 1 << i;
+        run.vals[i] = Some(Val::T(t));
     }
     match run.solve(0) {
         // As the engine reports it: stopped when `cap` answers were reached.

@@ -150,6 +150,17 @@ impl MentalState {
         Some(at)
     }
 
+    /// The positions (ascending) of the goals of the current attention set that may be
+    /// believed now: every other goal is known not to be, as the goal mark is current (see
+    /// [`MentalState::goals_to_check`]). `None`: any goal may be.
+    pub(crate) fn goals_maybe_believed(&self) -> Option<SmallVec<[u32; 16]>> {
+        let mark = self.goal_mark.as_ref()?;
+        if mark.new_predicates != self.attention.current().new_predicates() {
+            return None;
+        }
+        self.goals_to_check()
+    }
+
     /// Blind commitment: removes every goal of the current attention set that is believed.
     /// Only the goals that the changes since the last check can have achieved are queried
     /// (see [`MentalState::goals_to_check`]); the others are not believed, so the goals
