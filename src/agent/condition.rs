@@ -170,6 +170,10 @@ pub fn evaluate(
                 None => found = literal(cx, lit, theta, cap, &mut cut)?,
             }
             let count = found.len();
+            if count == 0 {
+                continue;
+            }
+            next.items.reserve(count);
             for (j, a) in found.drain(..).enumerate() {
                 if next.items.len() >= cap {
                     cut = true;
