@@ -225,35 +225,6 @@ pub fn evaluate(
     })
 }
 
-/// The plan of `lit` ready for the thetas of a level, when it is a positive `bel` literal
-/// about this agent with a plan.
-fn planned<'a>(cx: &CondCtx<'a>, lit: &'a Lit) -> Option<super::conjunction::Batch<'a>> {
-    let Lit::Mental {
-        negated: false,
-        about: None,
-        op: MentalOp::Bel,
-        query,
-        plan,
-        ..
-    } = lit
-    else {
-        return None;
-    };
-    super::conjunction::Batch::new(plan.get(query, &cx.ms.knowledge)?, cx.ms)
-}
-
-/// `found` without repeated answers (a plan, as the engine, reports an answer once for each
-/// way it was found).
-fn distinct(found: &mut Found) {
-    if found.len() > 1 {
-        let mut set = AnswerSet::default();
-        for a in found.drain(..) {
-            set.push(a);
-        }
-        *found = set.items;
-    }
-}
-
 /// The variables some answer of `answers` binds (usually all bind the same ones).
 fn bound_by_any(answers: &[Subst]) -> SmallVec<[Sym; 8]> {
     let mut vars = SmallVec::new();
@@ -405,6 +376,35 @@ fn finish(negated: bool, raw: AnswerSet) -> Found {
         false => raw.items,
         true if raw.items.is_empty() => smallvec![Subst::new()],
         true => Found::new(),
+    }
+}
+
+/// The plan of `lit` ready for the thetas of a level, when it is a positive `bel` literal
+/// about this agent with a plan.
+fn planned<'a>(cx: &CondCtx<'a>, lit: &'a Lit) -> Option<super::conjunction::Batch<'a>> {
+    let Lit::Mental {
+        negated: false,
+        about: None,
+        op: MentalOp::Bel,
+        query,
+        plan,
+        ..
+    } = lit
+    else {
+        return None;
+    };
+    super::conjunction::Batch::new(plan.get(query, &cx.ms.knowledge)?, cx.ms)
+}
+
+/// `found` without repeated answers (a plan, as the engine, reports an answer once for each
+/// way it was found).
+fn distinct(found: &mut Found) {
+    if found.len() > 1 {
+        let mut set = AnswerSet::default();
+        for a in found.drain(..) {
+            set.push(a);
+        }
+        *found = set.items;
     }
 }
 
