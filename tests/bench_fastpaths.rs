@@ -95,3 +95,25 @@ fn goals_of_one_fact_answer_once_each_in_adoption_order() {
     );
     assert_eq!(out, ["a(4)", "a(1)", "a(3)"]);
 }
+
+#[test]
+fn goal_facts_inserted_in_the_cycle_are_no_a_goals() {
+    // Goals known not believed since the last goal check skip the belief lookup: an inserted
+    // fact achieves its one-fact goal, and in a goal of two facts it is a `goal-a` fact (not an
+    // `a-goal` one) while the goal stays.
+    let src = "init module { goals { fib(1). fib(2). (fib(3), fib(4)). fib(5). } }
+         main module { program [order=linearall] {
+            if a-goal(fib(2)) then insert(fib(2)) + insert(fib(4)).
+            forall a-goal(fib(N)) do print(a(N)).
+            forall goal-a(fib(N)) do print(b(N)).
+         } }";
+    let p = Program::from_source("t.goal", src).expect("program");
+    let cfg = AgentConfig {
+        trace: TraceLevel::Off,
+        ..AgentConfig::default()
+    };
+    let mut a = Agent::new(p, "t", cfg);
+    let out: Vec<Vec<String>> = (0..3).map(|_| a.step(&[], &[]).printed).collect();
+    // One rule acts per cycle here: the insert, then the two `forall` rules.
+    assert_eq!(out, [vec![], vec!["a(1)", "a(3)", "a(5)"], vec!["b(4)"]]);
+}

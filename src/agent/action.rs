@@ -176,10 +176,12 @@ impl Core {
         } else {
             self.ms.attention.depth() - 1
         };
-        self.changes(vec![Event::GoalAdopted {
-            goal: g.to_string(),
-            attention,
-        }]);
+        if self.level >= TraceLevel::Changes {
+            self.changes(vec![Event::GoalAdopted {
+                goal: g.to_string(),
+                attention,
+            }]);
+        }
         self.done(&act)?;
         Ok(Outcome::Done { real: true })
     }
@@ -278,7 +280,8 @@ impl Core {
         // Goals are checked against the beliefs, mailbox included.
         self.ms.mailbox.settle();
         let mut ev = Vec::new();
-        self.ms.goal_check(&mut ev)?;
+        self.ms
+            .goal_check(&mut ev, self.level >= TraceLevel::Changes)?;
         self.changes(ev);
         Ok(())
     }

@@ -158,10 +158,26 @@ pub fn evaluate(
         };
         let mut next = AnswerSet::default();
         let bound = bound_by_any(level);
+        // A planned `bel` literal runs its plan under each theta into one buffer.
+        let batch = planned(cx, lit);
+        let mut found = Found::new();
         'each: for theta in level.iter_mut() {
-            let found = literal(cx, lit, theta, cap, &mut cut)?;
+            match batch
+                .as_ref()
+                .and_then(|b| b.answers_into(theta, cap, &mut found))
+            {
+                Some(stopped) => {
+                    cut |= stopped;
+                    distinct(&mut found);
+                }
+                None => found = literal(cx, lit, theta, cap, &mut cut)?,
+            }
             let count = found.len();
-            for (j, a) in found.into_iter().enumerate() {
+            if count == 0 {
+                continue;
+            }
+            next.items.reserve(count);
+            for (j, a) in found.drain(..).enumerate() {
                 if next.items.len() >= cap {
                     cut = true;
                     break 'each;
@@ -329,13 +345,9 @@ fn literal(
                 }
             };
             *cut |= stopped;
-            if found.len() == 1 {
-                raw.items = found;
-            } else {
-                for a in found {
-                    raw.push(a);
-                }
-            }
+            let mut found = found;
+            distinct(&mut found);
+            raw.items = found;
         }
         (MentalOp::Goal | MentalOp::AGoal | MentalOp::GoalA, None) => {
             // The query's instance is matched in place when `theta` allows (no copy made).
@@ -431,6 +443,35 @@ fn finish(negated: bool, raw: AnswerSet) -> Found {
     }
 }
 
+/// The plan of `lit` ready for the thetas of a level, when it is a positive `bel` literal
+/// about this agent with a plan.
+fn planned<'a>(cx: &CondCtx<'a>, lit: &'a Lit) -> Option<super::conjunction::Batch<'a>> {
+    let Lit::Mental {
+        negated: false,
+        about: None,
+        op: MentalOp::Bel,
+        query,
+        plan,
+        ..
+    } = lit
+    else {
+        return None;
+    };
+    super::conjunction::Batch::new(plan.get(query, &cx.ms.knowledge)?, cx.ms)
+}
+
+/// `found` without repeated answers (a plan, as the engine, reports an answer once for each
+/// way it was found).
+fn distinct(found: &mut Found) {
+    if found.len() > 1 {
+        let mut set = AnswerSet::default();
+        for a in found.drain(..) {
+            set.push(a);
+        }
+        *found = set.items;
+    }
+}
+
 /// The answers of an `a-goal` (`believed` false) or `goal-a` (`believed` true) query over
 /// the goals of `base`, read from the goal facts directly when nothing but goal facts
 /// answers the query, the query has no `_` (so the instance an answer makes is the goal fact
@@ -464,12 +505,24 @@ fn goal_fact_answers(
     let distinct = positions
         .iter()
         .all(|&i| goals[i as usize].facts.len() == 1);
+    // The fact of a one-fact goal the goal mark knows not believed needs no lookup.
+    let maybe = match std::ptr::eq(base, ms.attention.current()) {
+        true => ms.goals_maybe_believed(),
+        false => None,
+    };
     raw.items.reserve(positions.len());
     for &i in positions {
-        let facts = goals[i as usize].facts.iter();
-        for fact in facts.filter(|f| f.functor() == Some((name, arity))) {
+        let goal = &goals[i as usize];
+        let unbelieved =
+            goal.facts.len() == 1 && maybe.as_ref().is_some_and(|m| m.binary_search(&i).is_err());
+        for fact in goal
+            .facts
+            .iter()
+            .filter(|f| f.functor() == Some((name, arity)))
+        {
             let mut a = Subst::with_capacity(arity);
-            if !gq.match_fact(fact, &mut a) || holders.iter().any(|b| b.contains(fact)) != believed
+            if !gq.match_fact(fact, &mut a)
+                || (!unbelieved && holders.iter().any(|b| b.contains(fact))) != believed
             {
                 continue;
             }
@@ -484,6 +537,14 @@ fn goal_fact_answers(
 
 /// True when `t` has the anonymous variable `_`.
 fn has_anonymous(t: &Term) -> bool {
+    let anonymous =
+        |a: &Term| matches!(a, Term::Var(v) if *v == crate::term::well_known::UNDERSCORE);
+    // A query of atomic arguments (the usual `fib(N)`) is looked at without a work stack.
+    if let Term::Compound(c) = t {
+        if !c.args.iter().any(|a| matches!(a, Term::Compound(_))) {
+            return c.args.iter().any(anonymous);
+        }
+    }
     let mut stack: SmallVec<[&Term; 16]> = SmallVec::new();
     stack.push(t);
     while let Some(t) = stack.pop() {

@@ -16,7 +16,10 @@ use crate::term::{well_known as wk, Subst, Sym, Term};
 use smallvec::{smallvec, SmallVec};
 use std::sync::{Arc, OnceLock, Weak};
 
+mod batch;
 mod run;
+
+pub use batch::Batch;
 
 /// The answers of a plan: mostly none or one, kept inline.
 pub type Answers = SmallVec<[Subst; 1]>;
@@ -77,6 +80,9 @@ enum Expr {
     Reg(usize),
     Neg(Box<Expr>),
     Bin(Op, Box<Expr>, Box<Expr>),
+    /// A variable and an integer under an operator (`N - 1`, the usual case): evaluated
+    /// without a recursion into its operands.
+    RegInt(Op, usize, i64),
 }
 
 /// A fact pattern of a plan.
@@ -314,11 +320,10 @@ fn expr(t: &Term, vars: &[Sym], depth: usize) -> Option<Expr> {
             let x = Box::new(expr(&c.args[0], vars, depth + 1)?);
             match op {
                 Op::Neg => Some(Expr::Neg(x)),
-                _ => Some(Expr::Bin(
-                    op,
-                    x,
-                    Box::new(expr(&c.args[1], vars, depth + 1)?),
-                )),
+                _ => Some(match (*x, expr(&c.args[1], vars, depth + 1)?) {
+                    (Expr::Reg(k), Expr::Int(i)) => Expr::RegInt(op, k, i),
+                    (x, y) => Expr::Bin(op, Box::new(x), Box::new(y)),
+                }),
             }
         }
         _ => None,

@@ -12,6 +12,20 @@ pub(super) fn answers(
     theta: &Subst,
     cap: usize,
 ) -> Option<(Answers, bool)> {
+    let mut out = Answers::new();
+    let cut = answers_into(plan, bases, theta, cap, &mut out)?;
+    Some((out, cut))
+}
+
+/// [`answers`] added to `out` (empty when called); `None` (and `out` left with some answers
+/// perhaps): the engine answers.
+pub(super) fn answers_into(
+    plan: &Plan,
+    bases: &[&FactBase],
+    theta: &Subst,
+    cap: usize,
+    out: &mut Answers,
+) -> Option<bool> {
     let mut run = Run {
         plan,
         bases,
@@ -22,24 +36,23 @@ pub(super) fn answers(
         steps: 0,
         cells: 0,
         cap,
-        out: Answers::new(),
+        out,
     };
-    for (i, v) in plan.vars.iter().enumerate() {
-        let val = theta.get(*v);
-        if let Some(t) = val {
-            if matches!(t, Term::Compound(_) | Term::Var(_)) && !t.is_ground() {
-                return None;
-            }
-            run.given |= 1 << i;
+    // Each binding of `theta` placed in its variable's register (a look for each binding, not
+    // one through `theta` for each variable: `theta` binds few).
+    for (v, t) in theta.iter() {
+        let Some(i) = plan.vars.iter().position(|w| *w == v) else {
+            continue;
+        };
+        if matches!(t, Term::Compound(_) | Term::Var(_)) && !t.is_ground() {
+            return None;
         }
-        run.vals[i] = val.map(Val::T);
+        run.given |= 1 << i;
+        run.vals[i] = Some(Val::T(t));
     }
     match run.solve(0) {
         // As the engine reports it: stopped when `cap` answers were reached.
-        Ok(()) | Err(Halt::Cap) => {
-            let cut = run.out.len() >= cap;
-            Some((run.out, cut))
-        }
+        Ok(()) | Err(Halt::Cap) => Some(run.out.len() >= cap),
         Err(Halt::Bail) => None,
     }
 }
@@ -89,7 +102,7 @@ type Go = Result<(), Halt>;
 
 /// One run of a plan: the variables' values (by the plan's order), the trail of those bound
 /// since, and the budget spent.
-struct Run<'a> {
+struct Run<'a, 'o> {
     plan: &'a Plan,
     bases: &'a [&'a FactBase],
     vals: [Option<Val<'a>>; MAX_VARS],
@@ -102,10 +115,10 @@ struct Run<'a> {
     steps: usize,
     cells: usize,
     cap: usize,
-    out: Answers,
+    out: &'o mut Answers,
 }
 
-impl<'a> Run<'a> {
+impl<'a> Run<'a, '_> {
     /// Runs conjuncts `i..` under the values bound so far, adding each answer.
     fn solve(&mut self, i: usize) -> Go {
         let plan = self.plan;
@@ -274,21 +287,11 @@ impl<'a> Run<'a> {
             Expr::Bin(op, x, y) => {
                 let x = self.eval(x)?;
                 let y = self.eval(y)?;
-                match op {
-                    Op::Add => x.checked_add(y),
-                    Op::Sub => x.checked_sub(y),
-                    Op::Mul => x.checked_mul(y),
-                    Op::IntDiv if y != 0 => x.checked_div(y),
-                    Op::Mod if y != 0 => x.checked_rem(y).map(|r| {
-                        if r != 0 && (r < 0) != (y < 0) {
-                            r + y
-                        } else {
-                            r
-                        }
-                    }),
-                    _ => None,
-                }
-                .ok_or(Halt::Bail)
+                apply(*op, x, y).ok_or(Halt::Bail)
+            }
+            Expr::RegInt(op, k, y) => {
+                let x = self.vals[*k].and_then(Val::int).ok_or(Halt::Bail)?;
+                apply(*op, x, *y).ok_or(Halt::Bail)
             }
         }
     }
@@ -322,7 +325,7 @@ impl<'a> Run<'a> {
     /// Calls `then` once for each fact that matches the pattern `p` (with the pattern's free
     /// variables bound to the fact's parts), in the engine's order: base by base, each in
     /// insertion order.
-    fn each_match(&mut self, p: &'a Pattern, then: &mut dyn FnMut(&mut Run<'a>) -> Go) -> Go {
+    fn each_match(&mut self, p: &'a Pattern, then: &mut dyn FnMut(&mut Self) -> Go) -> Go {
         let (name, arity) = (p.name, p.arity);
         let bases = self.bases;
         // A ground instance is looked up by hash, as the engine looks up a ground fact.
@@ -453,6 +456,25 @@ impl<'a> Run<'a> {
             }
         }
         Ok(true)
+    }
+}
+
+/// The binary operator `op` on `x` and `y`; `None` on an overflow or a zero divisor (the
+/// engine then raises its error).
+fn apply(op: Op, x: i64, y: i64) -> Option<i64> {
+    match op {
+        Op::Add => x.checked_add(y),
+        Op::Sub => x.checked_sub(y),
+        Op::Mul => x.checked_mul(y),
+        Op::IntDiv if y != 0 => x.checked_div(y),
+        Op::Mod if y != 0 => x.checked_rem(y).map(|r| {
+            if r != 0 && (r < 0) != (y < 0) {
+                r + y
+            } else {
+                r
+            }
+        }),
+        _ => None,
     }
 }
 

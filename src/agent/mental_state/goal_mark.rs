@@ -150,11 +150,24 @@ impl MentalState {
         Some(at)
     }
 
+    /// The positions (ascending) of the goals of the current attention set that may be
+    /// believed now: every other goal is known not to be, as the goal mark is current (see
+    /// [`MentalState::goals_to_check`]). `None`: any goal may be.
+    pub(crate) fn goals_maybe_believed(&self) -> Option<SmallVec<[u32; 16]>> {
+        let mark = self.goal_mark.as_ref()?;
+        if mark.new_predicates != self.attention.current().new_predicates() {
+            return None;
+        }
+        self.goals_to_check()
+    }
+
     /// Blind commitment: removes every goal of the current attention set that is believed.
     /// Only the goals that the changes since the last check can have achieved are queried
     /// (see [`MentalState::goals_to_check`]); the others are not believed, so the goals
-    /// removed, their order and the events are those of a check of every goal.
-    pub fn goal_check(&mut self, events: &mut Vec<Event>) -> Result<(), Fault> {
+    /// removed, their order and the events are those of a check of every goal. `events` gets
+    /// one per goal removed, when `report` (the goal printed: not made for a trace that
+    /// shows none).
+    pub fn goal_check(&mut self, events: &mut Vec<Event>, report: bool) -> Result<(), Fault> {
         self.renote_goal_predicates();
         let mut achieved: SmallVec<[u32; 4]> = SmallVec::new();
         let goals = self.attention.current().goals();
@@ -181,7 +194,7 @@ impl MentalState {
         let removed = base.remove_at(&achieved);
         self.set_goal_mark(full);
         let attention = self.attention.depth() - 1;
-        for g in removed {
+        for g in removed.into_iter().filter(|_| report) {
             events.push(Event::GoalAchieved {
                 goal: g.term.to_string(),
                 attention,

@@ -172,6 +172,7 @@ fn match_flat(pattern: &Term, given: Option<&Subst>, fact: &Term, s: &mut Subst)
 }
 
 /// [`match_fact_under`] of a pattern that is a variable or atomic against a fact's term.
+#[inline]
 fn match_leaf(p: &Term, given: Option<&Subst>, f: &Term, s: &mut Subst) -> bool {
     match p {
         Term::Var(v) if *v == wk::UNDERSCORE => true,
