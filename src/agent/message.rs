@@ -210,13 +210,13 @@ impl Core {
             self.converse(m.sender, m.receiver, &content);
             let f = received(&Term::Atom(m.sender), &content);
             if record {
-                if self.ms.mailbox.insert(f.clone()) {
+                if self.ms.mailbox.receive(f.clone()) {
                     ev.push(Event::MailAdded {
                         fact: f.to_string(),
                     });
                 }
             } else {
-                self.ms.mailbox.insert(f);
+                self.ms.mailbox.receive(f);
             }
         }
         if !ev.is_empty() {

@@ -9,12 +9,14 @@ use crate::term::instance::{Instance, Value};
 pub(super) fn answers(
     plan: &Plan,
     bases: &[&FactBase],
+    arrived: Arrived<'_>,
     theta: &Subst,
     cap: usize,
 ) -> Option<(Answers, bool)> {
     let mut run = Run {
         plan,
         bases,
+        arrived,
         vals: [None; MAX_VARS],
         given: 0,
         trail: [0; MAX_VARS],
@@ -92,6 +94,8 @@ type Go = Result<(), Halt>;
 struct Run<'a> {
     plan: &'a Plan,
     bases: &'a [&'a FactBase],
+    /// Mailbox facts read after one of `bases` (see [`Arrived`]).
+    arrived: Arrived<'a>,
     vals: [Option<Val<'a>>; MAX_VARS],
     /// The variables `theta` binds (a bit each), left out of the answers.
     given: u64,
@@ -337,21 +341,39 @@ impl<'a> Run<'a> {
             return Ok(());
         }
         let (k1, k2) = (self.arg_key(p, 0)?, self.arg_key(p, 1)?);
-        for base in bases.iter().filter(|b| b.has_pred(name, arity)) {
-            let mut scan = base.scan(name, arity as u32, k1, k2);
-            while let Some(fact) = base.advance(&mut scan) {
-                self.tick()?;
-                let mark = self.bound;
-                let r = match self.match_fact(p, fact) {
-                    Ok(true) => then(self),
-                    Ok(false) => Ok(()),
-                    Err(h) => Err(h),
-                };
-                self.undo(mark);
-                r?;
+        for (i, base) in bases.iter().enumerate() {
+            if base.has_pred(name, arity) {
+                let mut scan = base.scan(name, arity as u32, k1, k2);
+                while let Some(fact) = base.advance(&mut scan) {
+                    self.try_fact(p, fact, then)?;
+                }
+            }
+            if i == self.arrived.after {
+                let arrived = self.arrived.facts;
+                for fact in arrived.iter().filter(|f| f.is_functor(name, arity)) {
+                    self.try_fact(p, fact, then)?;
+                }
             }
         }
         Ok(())
+    }
+
+    /// Calls `then` when `fact` matches the pattern `p` (see [`Run::each_match`]).
+    fn try_fact(
+        &mut self,
+        p: &'a Pattern,
+        fact: &'a Term,
+        then: &mut dyn FnMut(&mut Run<'a>) -> Go,
+    ) -> Go {
+        self.tick()?;
+        let mark = self.bound;
+        let r = match self.match_fact(p, fact) {
+            Ok(true) => then(self),
+            Ok(false) => Ok(()),
+            Err(h) => Err(h),
+        };
+        self.undo(mark);
+        r
     }
 
     /// Whether the parts `args` are ground under the values bound now (looked at left to
