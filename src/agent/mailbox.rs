@@ -11,44 +11,8 @@ const SCAN: usize = 8;
 /// Most `received/2` facts kept aside in [`Mailbox::arrived`]; more go into the fact base.
 const ARRIVED: usize = 8;
 
-/// How deep [`same_under`] compares by recursion before it leaves the rest to
-/// [`same_under_deep`]'s work list.
-const SHALLOW: usize = 16;
-
 /// True when `pattern` under `s` is the ground term `fact` (walked side by side, nothing built).
 fn same_under(s: &Subst, pattern: &Term, fact: &Term) -> bool {
-    same_shallow(s, pattern, fact, 0)
-}
-
-/// [`same_under`] by recursion while the terms are shallow (messages nearly always are): no
-/// work list to set up, push and pop for a term of a few nodes.
-fn same_shallow(s: &Subst, pattern: &Term, fact: &Term, depth: usize) -> bool {
-    match (s.walk(pattern), fact) {
-        (Term::Var(_), _) => false,
-        (Term::Compound(a), Term::Compound(b)) => {
-            if std::sync::Arc::ptr_eq(a, b) {
-                return true;
-            }
-            if a.name != b.name || a.args.len() != b.args.len() {
-                return false;
-            }
-            if depth >= SHALLOW {
-                return same_under_deep(s, pattern, fact);
-            }
-            a.args
-                .iter()
-                .zip(b.args.iter())
-                .all(|(x, y)| same_shallow(s, x, y, depth + 1))
-        }
-        // Atoms and integers, nearly every leaf of a message, compared in place.
-        (Term::Atom(a), Term::Atom(b)) => a == b,
-        (Term::Int(a), Term::Int(b)) => a == b,
-        (a, b) => a == b,
-    }
-}
-
-/// [`same_under`] of terms of any depth, by a work list.
-fn same_under_deep(s: &Subst, pattern: &Term, fact: &Term) -> bool {
     // Messages are small: the walk's stack stays inline. The walk goes down the first argument
     // of each compound at once and stacks only the others (most have one or two), and shared
     // sub-terms are equal without a look inside.
@@ -96,6 +60,8 @@ pub enum Deleted {
     Fact(Term),
     /// A held `sent(receiver, content)`.
     Sent(Sym, Term),
+    /// An arrived `received(sender, content)`.
+    Received(Term, Term),
 }
 
 impl Deleted {
@@ -104,6 +70,7 @@ impl Deleted {
         match self {
             Deleted::Fact(f) => f,
             Deleted::Sent(r, c) => sent(&Term::Atom(r), &c),
+            Deleted::Received(s, c) => Term::compound(wk::RECEIVED, vec![s, c]),
         }
     }
 }
@@ -154,13 +121,14 @@ pub struct Mailbox {
     /// base for it. Moved into `facts` by [`Mailbox::settle`] before anything can read the
     /// mailbox.
     held: Vec<(Sym, Term)>,
-    /// `received/2` facts of messages that arrived this cycle, in arrival order, not yet in
-    /// `facts` (each surely new there, at most [`ARRIVED`]): an agent that reads a message by
-    /// a condition plan and deletes it in the same cycle — the usual way to handle one — then
-    /// never hashes it into the fact base's indexes. Plans read them directly
-    /// ([`Mailbox::arrived`]), the engine through [`Mailbox::arrived_base`]; moved into `facts`
-    /// by [`Mailbox::settle`] in arrival order, before the held `sent/2` facts (sent later).
-    arrived: Vec<Term>,
+    /// The `received(Sender, Content)` facts of messages that arrived this cycle, as their
+    /// arguments, in arrival order, not yet in `facts` (each surely new there, at most
+    /// [`ARRIVED`]): an agent that reads a message by a condition plan and deletes it in the
+    /// same cycle — the usual way to handle one — then neither builds the fact nor hashes it
+    /// into the fact base's indexes. Plans read them directly ([`Mailbox::arrived`]), the
+    /// engine through [`Mailbox::arrived_base`]; moved into `facts` by [`Mailbox::settle`] in
+    /// arrival order, before the held `sent/2` facts (sent later).
+    arrived: Vec<[Term; 2]>,
     /// `arrived` as a fact base, built only when a reader needs one (a query the engine
     /// answers) and dropped whenever `arrived` changes.
     arrived_base: std::sync::OnceLock<FactBase>,
@@ -182,12 +150,13 @@ pub fn is_mail_predicate(name: Sym, arity: usize) -> bool {
         || (arity == 4 && name.name() == "session")
 }
 
-/// Received facts a reader takes beside a list of fact bases: `facts`, read right after the
-/// base at position `after` of the list (the mailbox's own base).
+/// Received facts a reader takes beside a list of fact bases: the `received/2` facts of
+/// `received`, read right after the base at position `after` of the list (the mailbox's own
+/// base).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Arrived<'a> {
-    /// The facts, in arrival order.
-    pub facts: &'a [Term],
+    /// The facts' arguments (sender, content), in arrival order.
+    pub received: &'a [[Term; 2]],
     /// The position of the base they follow.
     pub after: usize,
 }
@@ -211,8 +180,9 @@ impl Mailbox {
         &self.facts
     }
 
-    /// The `received/2` facts of this cycle not yet in [`Mailbox::stored`], in arrival order.
-    pub fn arrived(&self) -> &[Term] {
+    /// The arguments (sender, content) of the `received/2` facts of this cycle not yet in
+    /// [`Mailbox::stored`], in arrival order.
+    pub fn arrived(&self) -> &[[Term; 2]] {
         &self.arrived
     }
 
@@ -220,34 +190,39 @@ impl Mailbox {
     pub fn arrived_base(&self) -> &FactBase {
         self.arrived_base.get_or_init(|| {
             let mut base = FactBase::new();
-            for f in &self.arrived {
-                base.insert(f.clone());
+            for [sender, content] in &self.arrived {
+                base.insert(received(sender, content));
             }
             base
         })
     }
 
-    /// Adds the `received/2` fact of an arriving message; false when already present. Kept
-    /// aside (see [`Mailbox::arrived`]) while the fact base holds no `received/2` fact, so that
-    /// it is surely new there, and fewer than [`ARRIVED`] are aside.
-    pub fn receive(&mut self, fact: Term) -> bool {
+    /// Adds the fact `received(sender, content)` of an arriving message; false when already
+    /// present. Kept aside, not built (see [`Mailbox::arrived`]), while the fact base holds
+    /// no `received/2` fact, so that it is surely new there, and fewer than [`ARRIVED`] are
+    /// aside.
+    pub fn receive(&mut self, sender: Term, content: Term) -> bool {
         // Sends held now were made before this message arrived: they go first.
         if !self.held.is_empty() {
             self.settle();
         }
         if self.arrived.len() >= ARRIVED || self.facts.has_pred(wk::RECEIVED, 2) {
-            return self.insert(fact);
+            return self.insert(received(&sender, &content));
         }
-        if self.arrived.contains(&fact) {
+        if self
+            .arrived
+            .iter()
+            .any(|[s, c]| *s == sender && *c == content)
+        {
             return false;
         }
         self.arrived_base.take();
-        self.arrived.push(fact);
+        self.arrived.push([sender, content]);
         true
     }
 
     /// Removes arrived fact `k`.
-    fn take_arrived(&mut self, k: usize) -> Term {
+    fn take_arrived(&mut self, k: usize) -> [Term; 2] {
         self.arrived_base.take();
         take_at(&mut self.arrived, k)
     }
@@ -265,9 +240,11 @@ impl Mailbox {
             take_at(&mut self.held, k);
             return true;
         }
-        if let Some(k) = self.arrived.iter().position(|f| f == fact) {
-            self.take_arrived(k);
-            return true;
+        if fact.is_functor(wk::RECEIVED, 2) {
+            if let Some(k) = self.arrived.iter().position(|a| a[..] == *fact.args()) {
+                self.take_arrived(k);
+                return true;
+            }
         }
         self.facts.delete(fact)
     }
@@ -281,8 +258,8 @@ impl Mailbox {
             .chain(
                 self.arrived
                     .iter()
-                    .filter(|f| f.is_functor(name, arity))
-                    .cloned(),
+                    .filter(|_| (name, arity) == (wk::RECEIVED, 2))
+                    .map(|[s, c]| received(s, c)),
             )
             .find(|f| f.is_variant(fact))
     }
@@ -300,8 +277,15 @@ impl Mailbox {
             return Some(Deleted::Sent(r, c));
         }
         // A ground pattern matches one fact at most: where it is looked for first is no matter.
-        if let Some(k) = self.arrived.iter().position(|f| same_under(s, pattern, f)) {
-            return Some(Deleted::Fact(self.take_arrived(k)));
+        if pattern.is_functor(wk::RECEIVED, 2) {
+            let p = pattern.args();
+            let at = |[sender, content]: &[Term; 2]| {
+                same_under(s, &p[0], sender) && same_under(s, &p[1], content)
+            };
+            if let Some(k) = self.arrived.iter().position(at) {
+                let [sender, content] = self.take_arrived(k);
+                return Some(Deleted::Received(sender, content));
+            }
         }
         let (name, arity) = pattern.functor()?;
         let f = self
@@ -355,8 +339,9 @@ impl Mailbox {
 
     fn settle_arrived(&mut self) {
         self.arrived_base.take();
-        for f in self.arrived.drain(..) {
-            self.facts.insert(f);
+        for [sender, content] in self.arrived.drain(..) {
+            self.facts
+                .insert(Term::compound(wk::RECEIVED, vec![sender, content]));
         }
     }
 
@@ -473,6 +458,12 @@ mod tests {
         assert_eq!(left, [&term("received(b, imp(token(1, 5)))")]);
     }
 
+    /// Receives the message of the fact `received(Sender, Content)` written in `text`.
+    fn arrive(mb: &mut Mailbox, text: &str) -> bool {
+        let f = term(text);
+        mb.receive(f.args()[0].clone(), f.args()[1].clone())
+    }
+
     /// A mental state for agent `me` with knowledge `text`.
     fn mental_state(text: &str) -> crate::agent::mental_state::MentalState {
         let mut r = crate::syntax::prolog::Reader::new("t");
@@ -492,10 +483,10 @@ mod tests {
     #[test]
     fn arriving_messages_wait_aside_and_settle_in_arrival_order() {
         let mut mb = Mailbox::default();
-        assert!(mb.receive(term("received(a, imp(go(1)))")));
-        assert!(mb.receive(term("received(b, hi)")));
+        assert!(arrive(&mut mb, "received(a, imp(go(1)))"));
+        assert!(arrive(&mut mb, "received(b, hi)"));
         // The same message again is no new fact.
-        assert!(!mb.receive(term("received(a, imp(go(1)))")));
+        assert!(!arrive(&mut mb, "received(a, imp(go(1)))"));
         assert_eq!(mb.arrived().len(), 2);
         assert_eq!(mb.stored().len(), 0);
         assert_eq!(mb.arrived_base().len(), 2);
@@ -508,15 +499,15 @@ mod tests {
             Some(term("received(a, imp(go(1)))"))
         );
         assert_eq!(mb.arrived_base().len(), 1, "the engine's view follows");
-        assert!(mb.receive(term("received(c, one)")));
+        assert!(arrive(&mut mb, "received(c, one)"));
         mb.settle();
         assert!(mb.arrived().is_empty());
         let order: Vec<String> = mb.facts().iter().map(|f| f.to_string()).collect();
         assert_eq!(order, ["received(b,hi)", "received(c,one)"]);
         // With `received/2` facts stored, the next message goes to the fact base at once, after
         // them; a duplicate of a stored one is refused there.
-        assert!(mb.receive(term("received(d, two)")));
-        assert!(!mb.receive(term("received(b, hi)")));
+        assert!(arrive(&mut mb, "received(d, two)"));
+        assert!(!arrive(&mut mb, "received(b, hi)"));
         assert!(mb.arrived().is_empty());
         assert!(mb.delete(&term("received(b, hi)")));
         let order: Vec<String> = mb.facts().iter().map(|f| f.to_string()).collect();
@@ -527,7 +518,7 @@ mod tests {
     fn at_most_a_few_messages_wait_aside() {
         let mut mb = Mailbox::default();
         for i in 0..ARRIVED + 3 {
-            assert!(mb.receive(received(&Term::atom("a"), &Term::Int(i as i64))));
+            assert!(mb.receive(Term::atom("a"), Term::Int(i as i64)));
         }
         // The first one past the limit settled the waiting ones, then went in after them.
         assert!(mb.arrived().is_empty());
@@ -542,7 +533,7 @@ mod tests {
     fn held_sends_and_arrived_messages_keep_the_order_they_came_in() {
         let mut mb = Mailbox::default();
         // An open question waiting aside is found by a variant, as a stored one is.
-        assert!(mb.receive(term("received(a, int(at(_, red)))")));
+        assert!(arrive(&mut mb, "received(a, int(at(_, red)))"));
         let open = mb.variant_of(&term("received(a, int(at(X, red)))"));
         let open = open.expect("a variant");
         assert!(
@@ -552,9 +543,9 @@ mod tests {
         assert!(mb.delete(&open));
         assert!(mb.arrived().is_empty());
         assert!(mb.hold_sent(Sym::intern("b"), term("first")));
-        assert!(mb.receive(term("received(a, second)")));
+        assert!(arrive(&mut mb, "received(a, second)"));
         assert!(mb.hold_sent(Sym::intern("b"), term("third")));
-        assert!(mb.receive(term("received(a, fourth)")));
+        assert!(arrive(&mut mb, "received(a, fourth)"));
         mb.settle();
         let got: Vec<String> = mb.facts().iter().map(|f| f.to_string()).collect();
         assert_eq!(
@@ -573,8 +564,8 @@ mod tests {
         use crate::agent::conjunction::Plan;
         use crate::agent::mental_state::MentalState;
         let mut ms = mental_state("k(1).");
-        ms.mailbox.receive(term("received(a, imp(go(1)))"));
-        ms.mailbox.receive(term("received(b, hi)"));
+        arrive(&mut ms.mailbox, "received(a, imp(go(1)))");
+        arrive(&mut ms.mailbox, "received(b, hi)");
         let show = |found: &[Subst]| -> Vec<String> {
             let value = |s: &Subst, v: &str| s.get(Sym::intern(v)).map(|t| t.to_string());
             found

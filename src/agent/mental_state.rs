@@ -465,7 +465,7 @@ impl MentalState {
             self.percepts.batch(),
         ];
         let arrived = Arrived {
-            facts: self.mailbox.arrived(),
+            received: self.mailbox.arrived(),
             after: 2,
         };
         (bases, arrived)

@@ -345,29 +345,28 @@ impl<'a> Run<'a> {
             if base.has_pred(name, arity) {
                 let mut scan = base.scan(name, arity as u32, k1, k2);
                 while let Some(fact) = base.advance(&mut scan) {
-                    self.try_fact(p, fact, then)?;
+                    self.try_match(then, |run| run.match_fact(p, fact))?;
                 }
             }
-            if i == self.arrived.after {
-                let arrived = self.arrived.facts;
-                for fact in arrived.iter().filter(|f| f.is_functor(name, arity)) {
-                    self.try_fact(p, fact, then)?;
+            if i == self.arrived.after && (name, arity) == (wk::RECEIVED, 2) {
+                for args in self.arrived.received {
+                    self.try_match(then, |run| run.match_args(p, args))?;
                 }
             }
         }
         Ok(())
     }
 
-    /// Calls `then` when `fact` matches the pattern `p` (see [`Run::each_match`]).
-    fn try_fact(
+    /// Calls `then` when `matches` (matching one fact) binds the pattern's variables, then
+    /// takes the bindings back (see [`Run::each_match`]).
+    fn try_match(
         &mut self,
-        p: &'a Pattern,
-        fact: &'a Term,
         then: &mut dyn FnMut(&mut Run<'a>) -> Go,
+        matches: impl FnOnce(&mut Run<'a>) -> Result<bool, Halt>,
     ) -> Go {
         self.tick()?;
         let mark = self.bound;
-        let r = match self.match_fact(p, fact) {
+        let r = match matches(self) {
             Ok(true) => then(self),
             Ok(false) => Ok(()),
             Err(h) => Err(h),
@@ -426,11 +425,19 @@ impl<'a> Run<'a> {
             Term::Atom(a) => return Ok(p.arity == 0 && *a == p.name),
             _ => return Ok(false),
         };
-        if fc.name != p.name || fc.args.len() != p.args.len() {
+        if fc.name != p.name {
+            return Ok(false);
+        }
+        self.match_args(p, &fc.args)
+    }
+
+    /// [`Run::match_fact`] of a fact of the pattern's predicate with arguments `args`.
+    fn match_args(&mut self, p: &'a Pattern, args: &'a [Term]) -> Result<bool, Halt> {
+        if args.len() != p.args.len() {
             return Ok(false);
         }
         let mut work: SmallVec<[(&'a Arg, &'a Term); 8]> =
-            p.args.iter().zip(fc.args.iter()).rev().collect();
+            p.args.iter().zip(args.iter()).rev().collect();
         while let Some((p, f)) = work.pop() {
             match (p, f) {
                 (_, Term::Var(_)) => return Err(Halt::Bail),
