@@ -7,7 +7,7 @@ use super::mental_state::{GoalQuery, MentalState};
 use super::program::Lit;
 use crate::kr::fxhash::{FxHashMap, FxHasher};
 use crate::syntax::ast::MentalOp;
-use crate::term::{Subst, Sym, Term};
+use crate::term::{well_known as wk, Subst, Sym, Term};
 use smallvec::{smallvec, SmallVec};
 use std::hash::{Hash, Hasher};
 
@@ -253,14 +253,16 @@ pub fn first_lookup_fails(ms: &MentalState, lits: &[Lit], theta: &Subst) -> bool
         return false;
     };
     // Base by base, written out: no closure call per base (all six are looked at when the
-    // condition is skipped).
-    let [b0, b1, b2, b3, b4, b5] = ms.bases();
+    // condition is skipped), then the messages waiting aside in the mailbox, which the plan
+    // reads as `received/2` facts.
+    let ([b0, b1, b2, b3, b4, b5], arrived) = ms.plan_bases();
     !(b0.has_pred(name, arity)
         || b1.has_pred(name, arity)
         || b2.has_pred(name, arity)
         || b3.has_pred(name, arity)
         || b4.has_pred(name, arity)
-        || b5.has_pred(name, arity))
+        || b5.has_pred(name, arity)
+        || ((name, arity) == (wk::RECEIVED, 2) && !arrived.received.is_empty()))
         && theta
             .iter()
             .all(|(_, t)| matches!(t, Term::Atom(_) | Term::Int(_) | Term::Str(_)))

@@ -9,7 +9,7 @@
 
 use super::kr_bridge::{FactBase, Knowledge};
 use super::lookup::{size_if_ground, MAX_CANDIDATES, MAX_CELLS};
-use super::mailbox::is_mail_predicate;
+use super::mailbox::{is_mail_predicate, Arrived};
 use super::mental_state::MentalState;
 use crate::kr::native::code::Key;
 use crate::term::{well_known as wk, Subst, Sym, Term};
@@ -173,7 +173,8 @@ impl Plan {
         if !ms.native_roomy() {
             return None;
         }
-        run::answers(self, &ms.bases(), theta, cap)
+        let (bases, arrived) = ms.plan_bases();
+        run::answers(self, &bases, arrived, theta, cap)
     }
 
     /// The predicate of the plan's first conjunct when it is a fact pattern (a predicate only
@@ -192,7 +193,8 @@ impl Plan {
         theta: &Subst,
         cap: usize,
     ) -> Option<(Vec<Subst>, bool)> {
-        run::answers(self, bases, theta, cap).map(|(found, cut)| (found.into_vec(), cut))
+        run::answers(self, bases, Arrived::default(), theta, cap)
+            .map(|(found, cut)| (found.into_vec(), cut))
     }
 }
 

@@ -8,6 +8,9 @@ use crate::term::{well_known as wk, Subst, Sym, Term};
 /// delete to the fact base's hash lookup.
 const SCAN: usize = 8;
 
+/// Most `received/2` facts kept aside in [`Mailbox::arrived`]; more go into the fact base.
+const ARRIVED: usize = 8;
+
 /// True when `pattern` under `s` is the ground term `fact` (walked side by side, nothing built).
 fn same_under(s: &Subst, pattern: &Term, fact: &Term) -> bool {
     // Messages are small: the walk's stack stays inline. The walk goes down the first argument
@@ -57,6 +60,8 @@ pub enum Deleted {
     Fact(Term),
     /// A held `sent(receiver, content)`.
     Sent(Sym, Term),
+    /// An arrived `received(sender, content)`.
+    Received(Term, Term),
 }
 
 impl Deleted {
@@ -65,8 +70,20 @@ impl Deleted {
         match self {
             Deleted::Fact(f) => f,
             Deleted::Sent(r, c) => sent(&Term::Atom(r), &c),
+            Deleted::Received(s, c) => Term::compound(wk::RECEIVED, vec![s, c]),
         }
     }
+}
+
+/// Removes item `k` of `v`, keeping the order of the rest: the usual one held fact, the
+/// last, is popped without a general remove.
+fn take_at<T>(v: &mut Vec<T>, k: usize) -> T {
+    if k + 1 == v.len() {
+        if let Some(x) = v.pop() {
+            return x;
+        }
+    }
+    v.remove(k)
 }
 
 /// True when `fact` is the held `sent(receiver, content)`.
@@ -104,6 +121,17 @@ pub struct Mailbox {
     /// base for it. Moved into `facts` by [`Mailbox::settle`] before anything can read the
     /// mailbox.
     held: Vec<(Sym, Term)>,
+    /// The `received(Sender, Content)` facts of messages that arrived this cycle, as their
+    /// arguments, in arrival order, not yet in `facts` (each surely new there, at most
+    /// [`ARRIVED`]): an agent that reads a message by a condition plan and deletes it in the
+    /// same cycle — the usual way to handle one — then neither builds the fact nor hashes it
+    /// into the fact base's indexes. Plans read them directly ([`Mailbox::arrived`]), the
+    /// engine through [`Mailbox::arrived_base`]; moved into `facts` by [`Mailbox::settle`] in
+    /// arrival order, before the held `sent/2` facts (sent later).
+    arrived: Vec<[Term; 2]>,
+    /// `arrived` as a fact base, built only when a reader needs one (a query the engine
+    /// answers) and dropped whenever `arrived` changes.
+    arrived_base: std::sync::OnceLock<FactBase>,
     /// The agent's conversations (their `session/4` facts are among `facts`); `None` when
     /// nothing in the program can see them (`Program::uses_sessions`): then they are not
     /// followed at all, which keeps a long-running agent's mailbox from growing with them.
@@ -122,11 +150,81 @@ pub fn is_mail_predicate(name: Sym, arity: usize) -> bool {
         || (arity == 4 && name.name() == "session")
 }
 
+/// Received facts a reader takes beside a list of fact bases: the `received/2` facts of
+/// `received`, read right after the base at position `after` of the list (the mailbox's own
+/// base).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Arrived<'a> {
+    /// The facts' arguments (sender, content), in arrival order.
+    pub received: &'a [[Term; 2]],
+    /// The position of the base they follow.
+    pub after: usize,
+}
+
 impl Mailbox {
-    /// The facts for queries (callers settle held facts first: see [`Mailbox::settle`]).
+    /// All facts, for readers that list the mailbox (callers settle first: see
+    /// [`Mailbox::settle`]).
     pub fn facts(&self) -> &FactBase {
+        debug_assert!(
+            self.arrived.is_empty(),
+            "mailbox read with arrived facts aside"
+        );
+        self.stored()
+    }
+
+    /// The fact base without the facts kept aside, for readers that also read
+    /// [`Mailbox::arrived`] or [`Mailbox::arrived_base`] (held `sent/2` facts are settled
+    /// before any read).
+    pub fn stored(&self) -> &FactBase {
         debug_assert!(self.held.is_empty(), "mailbox read with held sent/2 facts");
         &self.facts
+    }
+
+    /// The arguments (sender, content) of the `received/2` facts of this cycle not yet in
+    /// [`Mailbox::stored`], in arrival order.
+    pub fn arrived(&self) -> &[[Term; 2]] {
+        &self.arrived
+    }
+
+    /// [`Mailbox::arrived`] as a fact base (for the engine), built on first use after a change.
+    pub fn arrived_base(&self) -> &FactBase {
+        self.arrived_base.get_or_init(|| {
+            let mut base = FactBase::new();
+            for [sender, content] in &self.arrived {
+                base.insert(received(sender, content));
+            }
+            base
+        })
+    }
+
+    /// Adds the fact `received(sender, content)` of an arriving message; false when already
+    /// present. Kept aside, not built (see [`Mailbox::arrived`]), while the fact base holds
+    /// no `received/2` fact, so that it is surely new there, and fewer than [`ARRIVED`] are
+    /// aside.
+    pub fn receive(&mut self, sender: Term, content: Term) -> bool {
+        // Sends held now were made before this message arrived: they go first.
+        if !self.held.is_empty() {
+            self.settle();
+        }
+        if self.arrived.len() >= ARRIVED || self.facts.has_pred(wk::RECEIVED, 2) {
+            return self.insert(received(&sender, &content));
+        }
+        if self
+            .arrived
+            .iter()
+            .any(|[s, c]| *s == sender && *c == content)
+        {
+            return false;
+        }
+        self.arrived_base.take();
+        self.arrived.push([sender, content]);
+        true
+    }
+
+    /// Removes arrived fact `k`.
+    fn take_arrived(&mut self, k: usize) -> [Term; 2] {
+        self.arrived_base.take();
+        take_at(&mut self.arrived, k)
     }
 
     /// Adds a mail fact; false when already present.
@@ -139,8 +237,14 @@ impl Mailbox {
     /// Removes a mail fact; false when absent.
     pub fn delete(&mut self, fact: &Term) -> bool {
         if let Some(k) = self.held.iter().position(|h| is_held(h, fact)) {
-            self.held.remove(k);
+            take_at(&mut self.held, k);
             return true;
+        }
+        if fact.is_functor(wk::RECEIVED, 2) {
+            if let Some(k) = self.arrived.iter().position(|a| a[..] == *fact.args()) {
+                self.take_arrived(k);
+                return true;
+            }
         }
         self.facts.delete(fact)
     }
@@ -151,6 +255,12 @@ impl Mailbox {
         let (name, arity) = fact.functor()?;
         let held = self.held.iter().map(|(r, c)| sent(&Term::Atom(*r), c));
         held.chain(self.facts.facts_of(name, arity).cloned())
+            .chain(
+                self.arrived
+                    .iter()
+                    .filter(|_| (name, arity) == (wk::RECEIVED, 2))
+                    .map(|[s, c]| received(s, c)),
+            )
             .find(|f| f.is_variant(fact))
     }
 
@@ -163,8 +273,19 @@ impl Mailbox {
             return None;
         }
         if let Some(k) = self.held.iter().position(|h| held_under(s, pattern, h)) {
-            let (r, c) = self.held.remove(k);
+            let (r, c) = take_at(&mut self.held, k);
             return Some(Deleted::Sent(r, c));
+        }
+        // A ground pattern matches one fact at most: where it is looked for first is no matter.
+        if pattern.is_functor(wk::RECEIVED, 2) {
+            let p = pattern.args();
+            let at = |[sender, content]: &[Term; 2]| {
+                same_under(s, &p[0], sender) && same_under(s, &p[1], content)
+            };
+            if let Some(k) = self.arrived.iter().position(at) {
+                let [sender, content] = self.take_arrived(k);
+                return Some(Deleted::Received(sender, content));
+            }
         }
         let (name, arity) = pattern.functor()?;
         let f = self
@@ -203,12 +324,24 @@ impl Mailbox {
         true
     }
 
-    /// Moves the held `sent/2` facts into the fact base, in the order they were sent.
+    /// Moves the arrived `received/2` facts and then the held `sent/2` facts into the fact
+    /// base, each in the order they came.
     #[inline]
     pub fn settle(&mut self) {
-        // Called before every read and after every combo, nearly always with nothing held.
+        // Called before every read and after every combo, nearly always with nothing aside.
+        if !self.arrived.is_empty() {
+            self.settle_arrived();
+        }
         if !self.held.is_empty() {
             self.settle_held();
+        }
+    }
+
+    fn settle_arrived(&mut self) {
+        self.arrived_base.take();
+        for [sender, content] in self.arrived.drain(..) {
+            self.facts
+                .insert(Term::compound(wk::RECEIVED, vec![sender, content]));
         }
     }
 
@@ -323,6 +456,138 @@ mod tests {
         assert!(by_pattern.delete_matching(&pattern, &s).is_some());
         let left: Vec<&Term> = by_pattern.facts().iter().collect();
         assert_eq!(left, [&term("received(b, imp(token(1, 5)))")]);
+    }
+
+    /// Receives the message of the fact `received(Sender, Content)` written in `text`.
+    fn arrive(mb: &mut Mailbox, text: &str) -> bool {
+        let f = term(text);
+        mb.receive(f.args()[0].clone(), f.args()[1].clone())
+    }
+
+    /// A mental state for agent `me` with knowledge `text`.
+    fn mental_state(text: &str) -> crate::agent::mental_state::MentalState {
+        let mut r = crate::syntax::prolog::Reader::new("t");
+        let (clauses, _) = r.clauses(text, 0);
+        let clauses: Vec<Term> = clauses.into_iter().map(|c| c.term).collect();
+        let kn = crate::agent::kr_bridge::Knowledge::load(&clauses).expect("knowledge");
+        let agents = crate::agent::directory::Directory::new(&["me".into(), "a".into()]);
+        crate::agent::mental_state::MentalState::new(
+            kn,
+            &Term::atom("me"),
+            agents,
+            crate::agent::kr_bridge::Limits::default(),
+            1,
+        )
+    }
+
+    #[test]
+    fn arriving_messages_wait_aside_and_settle_in_arrival_order() {
+        let mut mb = Mailbox::default();
+        assert!(arrive(&mut mb, "received(a, imp(go(1)))"));
+        assert!(arrive(&mut mb, "received(b, hi)"));
+        // The same message again is no new fact.
+        assert!(!arrive(&mut mb, "received(a, imp(go(1)))"));
+        assert_eq!(mb.arrived().len(), 2);
+        assert_eq!(mb.stored().len(), 0);
+        assert_eq!(mb.arrived_base().len(), 2);
+        // Deleted by pattern or by the fact itself, without reaching the fact base.
+        let mut s = Subst::new();
+        s.bind(Sym::intern("X"), Term::Int(1));
+        assert_eq!(
+            mb.delete_matching(&term("received(a, imp(go(X)))"), &s)
+                .map(Deleted::term),
+            Some(term("received(a, imp(go(1)))"))
+        );
+        assert_eq!(mb.arrived_base().len(), 1, "the engine's view follows");
+        assert!(arrive(&mut mb, "received(c, one)"));
+        mb.settle();
+        assert!(mb.arrived().is_empty());
+        let order: Vec<String> = mb.facts().iter().map(|f| f.to_string()).collect();
+        assert_eq!(order, ["received(b,hi)", "received(c,one)"]);
+        // With `received/2` facts stored, the next message goes to the fact base at once, after
+        // them; a duplicate of a stored one is refused there.
+        assert!(arrive(&mut mb, "received(d, two)"));
+        assert!(!arrive(&mut mb, "received(b, hi)"));
+        assert!(mb.arrived().is_empty());
+        assert!(mb.delete(&term("received(b, hi)")));
+        let order: Vec<String> = mb.facts().iter().map(|f| f.to_string()).collect();
+        assert_eq!(order, ["received(c,one)", "received(d,two)"]);
+    }
+
+    #[test]
+    fn at_most_a_few_messages_wait_aside() {
+        let mut mb = Mailbox::default();
+        for i in 0..ARRIVED + 3 {
+            assert!(mb.receive(Term::atom("a"), Term::Int(i as i64)));
+        }
+        // The first one past the limit settled the waiting ones, then went in after them.
+        assert!(mb.arrived().is_empty());
+        let got: Vec<String> = mb.facts().iter().map(|f| f.to_string()).collect();
+        let want: Vec<String> = (0..ARRIVED + 3)
+            .map(|i| format!("received(a,{i})"))
+            .collect();
+        assert_eq!(got, want);
+    }
+
+    #[test]
+    fn held_sends_and_arrived_messages_keep_the_order_they_came_in() {
+        let mut mb = Mailbox::default();
+        // An open question waiting aside is found by a variant, as a stored one is.
+        assert!(arrive(&mut mb, "received(a, int(at(_, red)))"));
+        let open = mb.variant_of(&term("received(a, int(at(X, red)))"));
+        let open = open.expect("a variant");
+        assert!(
+            open.to_string().starts_with("received(a,int(at(_"),
+            "{open}"
+        );
+        assert!(mb.delete(&open));
+        assert!(mb.arrived().is_empty());
+        assert!(mb.hold_sent(Sym::intern("b"), term("first")));
+        assert!(arrive(&mut mb, "received(a, second)"));
+        assert!(mb.hold_sent(Sym::intern("b"), term("third")));
+        assert!(arrive(&mut mb, "received(a, fourth)"));
+        mb.settle();
+        let got: Vec<String> = mb.facts().iter().map(|f| f.to_string()).collect();
+        assert_eq!(
+            got,
+            [
+                "sent(b,first)",
+                "received(a,second)",
+                "sent(b,third)",
+                "received(a,fourth)"
+            ]
+        );
+    }
+
+    #[test]
+    fn plans_and_the_engine_see_the_messages_waiting_aside() {
+        use crate::agent::conjunction::Plan;
+        use crate::agent::mental_state::MentalState;
+        let mut ms = mental_state("k(1).");
+        arrive(&mut ms.mailbox, "received(a, imp(go(1)))");
+        arrive(&mut ms.mailbox, "received(b, hi)");
+        let show = |found: &[Subst]| -> Vec<String> {
+            let value = |s: &Subst, v: &str| s.get(Sym::intern(v)).map(|t| t.to_string());
+            found
+                .iter()
+                .map(|s| format!("{:?} {:?}", value(s, "S"), value(s, "M")))
+                .collect()
+        };
+        // The engine (asked with a built-in no plan takes) and a plan give the same answers in
+        // the same order, before and after the messages are settled into the fact base.
+        let engine =
+            |ms: &MentalState| show(&ms.bel(&term("received(S, M), atom(S)")).expect("engine"));
+        let plan = Plan::prepare(&term("received(S, M)"), &ms.knowledge.clone()).expect("plan");
+        let planned =
+            |ms: &MentalState| show(&plan.answers(ms, &Subst::new(), 9).expect("planned").0);
+        let (e1, p1) = (engine(&ms), planned(&ms));
+        assert_eq!(
+            p1,
+            [r#"Some("a") Some("imp(go(1))")"#, r#"Some("b") Some("hi")"#]
+        );
+        assert_eq!(e1, p1);
+        ms.mailbox.settle();
+        assert_eq!((engine(&ms), planned(&ms)), (e1, p1));
     }
 
     #[test]

@@ -8,7 +8,7 @@ use super::kr_bridge::{
     AgentEngine, Engine, FactBase, Knowledge, KrError, Limits, NativeEngine, View,
 };
 use super::lookup;
-use super::mailbox::{is_mail_fact, is_mail_predicate, Mailbox};
+use super::mailbox::{is_mail_fact, is_mail_predicate, Arrived, Mailbox};
 use super::models::Models;
 use super::percepts::PerceptBase;
 use super::trace::Event;
@@ -448,15 +448,27 @@ impl MentalState {
     }
 
     /// The fact bases a belief query reads, in the engine's order.
-    pub(crate) fn bases(&self) -> [&FactBase; 6] {
-        [
+    pub(crate) fn bases(&self) -> [&FactBase; 7] {
+        let [b, p, m, a, me, batch] = self.plan_bases().0;
+        [b, p, m, self.mailbox.arrived_base(), a, me, batch]
+    }
+
+    /// [`MentalState::bases`] for a condition plan: the mailbox's arrived messages as they
+    /// are, not as a fact base of their own (which only the engine needs).
+    pub(crate) fn plan_bases(&self) -> ([&FactBase; 6], Arrived<'_>) {
+        let bases = [
             &self.beliefs,
             self.percepts.facts(),
-            self.mailbox.facts(),
+            self.mailbox.stored(),
             self.agents.facts(),
             &self.me,
             self.percepts.batch(),
-        ]
+        ];
+        let arrived = Arrived {
+            received: self.mailbox.arrived(),
+            after: 2,
+        };
+        (bases, arrived)
     }
 
     fn run<T>(

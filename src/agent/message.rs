@@ -208,15 +208,16 @@ impl Core {
             };
             self.ms.update_model(m.sender.name(), &content)?;
             self.converse(m.sender, m.receiver, &content);
-            let f = received(&Term::Atom(m.sender), &content);
+            let sender = Term::Atom(m.sender);
             if record {
-                if self.ms.mailbox.insert(f.clone()) {
+                let f = received(&sender, &content);
+                if self.ms.mailbox.receive(sender, content) {
                     ev.push(Event::MailAdded {
                         fact: f.to_string(),
                     });
                 }
             } else {
-                self.ms.mailbox.insert(f);
+                self.ms.mailbox.receive(sender, content);
             }
         }
         if !ev.is_empty() {

@@ -8,15 +8,21 @@ use super::*;
 pub struct Batch<'a> {
     plan: &'a Plan,
     bases: [&'a FactBase; 6],
+    /// The mailbox's messages waiting aside, read after its base (see [`MentalState::plan_bases`]).
+    arrived: Arrived<'a>,
 }
 
 impl<'a> Batch<'a> {
     /// `plan` over the fact bases of `ms`; `None` when the engine's limits leave no room for
     /// plans (see [`Plan::answers`]).
     pub fn new(plan: &'a Plan, ms: &'a MentalState) -> Option<Batch<'a>> {
-        ms.native_roomy().then(|| Batch {
-            plan,
-            bases: ms.bases(),
+        ms.native_roomy().then(|| {
+            let (bases, arrived) = ms.plan_bases();
+            Batch {
+                plan,
+                bases,
+                arrived,
+            }
         })
     }
 
@@ -24,6 +30,6 @@ impl<'a> Batch<'a> {
     /// them; `None`: ask the engine (what `out` holds then means nothing).
     pub fn answers_into(&self, theta: &Subst, cap: usize, out: &mut Answers) -> Option<bool> {
         out.clear();
-        run::answers_into(self.plan, &self.bases, theta, cap, out)
+        run::answers_into(self.plan, &self.bases, self.arrived, theta, cap, out)
     }
 }

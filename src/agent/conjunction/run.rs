@@ -9,11 +9,12 @@ use crate::term::instance::{Instance, Value};
 pub(super) fn answers(
     plan: &Plan,
     bases: &[&FactBase],
+    arrived: Arrived<'_>,
     theta: &Subst,
     cap: usize,
 ) -> Option<(Answers, bool)> {
     let mut out = Answers::new();
-    let cut = answers_into(plan, bases, theta, cap, &mut out)?;
+    let cut = answers_into(plan, bases, arrived, theta, cap, &mut out)?;
     Some((out, cut))
 }
 
@@ -22,6 +23,7 @@ pub(super) fn answers(
 pub(super) fn answers_into(
     plan: &Plan,
     bases: &[&FactBase],
+    arrived: Arrived<'_>,
     theta: &Subst,
     cap: usize,
     out: &mut Answers,
@@ -29,6 +31,7 @@ pub(super) fn answers_into(
     let mut run = Run {
         plan,
         bases,
+        arrived,
         vals: [None; MAX_VARS],
         given: 0,
         trail: [0; MAX_VARS],
@@ -105,6 +108,8 @@ type Go = Result<(), Halt>;
 struct Run<'a, 'o> {
     plan: &'a Plan,
     bases: &'a [&'a FactBase],
+    /// Mailbox facts read after one of `bases` (see [`Arrived`]).
+    arrived: Arrived<'a>,
     vals: [Option<Val<'a>>; MAX_VARS],
     /// The variables `theta` binds (a bit each), left out of the answers.
     given: u64,
@@ -340,21 +345,38 @@ impl<'a> Run<'a, '_> {
             return Ok(());
         }
         let (k1, k2) = (self.arg_key(p, 0)?, self.arg_key(p, 1)?);
-        for base in bases.iter().filter(|b| b.has_pred(name, arity)) {
-            let mut scan = base.scan(name, arity as u32, k1, k2);
-            while let Some(fact) = base.advance(&mut scan) {
-                self.tick()?;
-                let mark = self.bound;
-                let r = match self.match_fact(p, fact) {
-                    Ok(true) => then(self),
-                    Ok(false) => Ok(()),
-                    Err(h) => Err(h),
-                };
-                self.undo(mark);
-                r?;
+        for (i, base) in bases.iter().enumerate() {
+            if base.has_pred(name, arity) {
+                let mut scan = base.scan(name, arity as u32, k1, k2);
+                while let Some(fact) = base.advance(&mut scan) {
+                    self.try_match(then, |run| run.match_fact(p, fact))?;
+                }
+            }
+            if i == self.arrived.after && (name, arity) == (wk::RECEIVED, 2) {
+                for args in self.arrived.received {
+                    self.try_match(then, |run| run.match_args(p, args))?;
+                }
             }
         }
         Ok(())
+    }
+
+    /// Calls `then` when `matches` (matching one fact) binds the pattern's variables, then
+    /// takes the bindings back (see [`Run::each_match`]).
+    fn try_match(
+        &mut self,
+        then: &mut dyn FnMut(&mut Self) -> Go,
+        matches: impl FnOnce(&mut Self) -> Result<bool, Halt>,
+    ) -> Go {
+        self.tick()?;
+        let mark = self.bound;
+        let r = match matches(self) {
+            Ok(true) => then(self),
+            Ok(false) => Ok(()),
+            Err(h) => Err(h),
+        };
+        self.undo(mark);
+        r
     }
 
     /// Whether the parts `args` are ground under the values bound now (looked at left to
@@ -407,11 +429,19 @@ impl<'a> Run<'a, '_> {
             Term::Atom(a) => return Ok(p.arity == 0 && *a == p.name),
             _ => return Ok(false),
         };
-        if fc.name != p.name || fc.args.len() != p.args.len() {
+        if fc.name != p.name {
+            return Ok(false);
+        }
+        self.match_args(p, &fc.args)
+    }
+
+    /// [`Run::match_fact`] of a fact of the pattern's predicate with arguments `args`.
+    fn match_args(&mut self, p: &'a Pattern, args: &'a [Term]) -> Result<bool, Halt> {
+        if args.len() != p.args.len() {
             return Ok(false);
         }
         let mut work: SmallVec<[(&'a Arg, &'a Term); 8]> =
-            p.args.iter().zip(fc.args.iter()).rev().collect();
+            p.args.iter().zip(args.iter()).rev().collect();
         while let Some((p, f)) = work.pop() {
             match (p, f) {
                 (_, Term::Var(_)) => return Err(Halt::Bail),
