@@ -33,6 +33,8 @@ impl Direct {
         cont: 0,
     };
 
+    /// Packs a call. Predicate indices are below 2^31 - 1 (a predicate table that size
+    /// would take hundreds of gigabytes), so no call packs to [`Direct::NONE`].
     fn new(pred: PredRef, args: Args, next: u32, depth: u32) -> Direct {
         let p = match pred {
             PredRef::User(i) => i,
@@ -429,4 +431,33 @@ fn place_args(m: &mut Machine, code: &Code, goal: Cell) -> Args {
         };
     }
     Args::Regs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Args, Direct};
+    use crate::kr::knowledge::PredRef;
+
+    #[test]
+    fn a_packed_direct_call_reads_back_what_was_packed() {
+        let cases = [
+            (PredRef::User(0), Args::Regs, super::NONE, 0),
+            (PredRef::User(7), Args::Heap(0), 3, 1),
+            (PredRef::Lib(5), Args::Heap(u32::MAX - 1), 0, u32::MAX),
+            (PredRef::Lib((1 << 31) - 2), Args::Regs, u32::MAX - 1, 42),
+        ];
+        for (pred, args, next, depth) in cases {
+            let d = Direct::new(pred, args, next, depth);
+            assert!(d.pending());
+            assert_eq!(d.pred(), pred);
+            let same_args = match (d.args(), args) {
+                (Args::Regs, Args::Regs) => true,
+                (Args::Heap(a), Args::Heap(b)) => a == b,
+                _ => false,
+            };
+            assert!(same_args, "{args:?} read back as {:?}", d.args());
+            assert_eq!((d.cont as u32, (d.cont >> 32) as u32), (next, depth));
+        }
+        assert!(!Direct::NONE.pending());
+    }
 }
