@@ -61,7 +61,7 @@ impl Solver<'_, '_> {
     /// `Ok(true)` with the recovery goal scheduled, or `Err(e)` when none catches it.
     pub(crate) fn recover(&mut self, e: KrError) -> KrResult<bool> {
         // A pending first body goal belongs to the computation the error abandons.
-        self.direct = None;
+        self.direct = super::clauses::Direct::NONE;
         let ball = match &e {
             KrError::Iso(t) | KrError::Uncaught(t) => t.clone(),
             _ => return Err(e),

@@ -10,13 +10,68 @@ use crate::term::{Sym, Term};
 
 /// A clause's first body goal, called right after the clause's head matched, with its
 /// arguments in the argument registers (or built on the heap) without a goal term around
-/// them and without a frame.
+/// them and without a frame. Packed in two words, written and read whole: a struct written
+/// field by field and read back in wider loads stalls store-to-load forwarding.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Direct {
-    pred: PredRef,
-    args: Args,
-    next: u32,
-    depth: u32,
+    /// The predicate (low half, see [`Direct::new`]) and where the arguments lie (high half,
+    /// [`REGS`] for the argument registers); `u64::MAX` when no call is pending.
+    call: u64,
+    /// The continuation (low half) and the depth (high half).
+    cont: u64,
+}
+
+/// The `Args` word of a [`Direct`] call whose arguments are in the registers.
+const REGS: u32 = u32::MAX;
+/// The predicate word's flag for a library predicate.
+const LIB: u32 = 1 << 31;
+
+impl Direct {
+    /// No call pending.
+    pub(crate) const NONE: Direct = Direct {
+        call: u64::MAX,
+        cont: 0,
+    };
+
+    /// Packs a call. Predicate indices are below 2^31 - 1 (a predicate table that size
+    /// would take hundreds of gigabytes), so no call packs to [`Direct::NONE`].
+    fn new(pred: PredRef, args: Args, next: u32, depth: u32) -> Direct {
+        let p = match pred {
+            PredRef::User(i) => i,
+            PredRef::Lib(i) => i | LIB,
+            PredRef::Builtin(_) => unreachable!("built-ins are not called directly"),
+        };
+        let a = match args {
+            Args::Heap(a) => a,
+            Args::Regs => REGS,
+        };
+        Direct {
+            call: u64::from(p) | u64::from(a) << 32,
+            cont: u64::from(next) | u64::from(depth) << 32,
+        }
+    }
+
+    /// True when a call is pending.
+    #[inline]
+    pub(crate) fn pending(self) -> bool {
+        self.call != u64::MAX
+    }
+
+    fn pred(self) -> PredRef {
+        let p = self.call as u32;
+        if p & LIB != 0 {
+            PredRef::Lib(p & !LIB)
+        } else {
+            PredRef::User(p)
+        }
+    }
+
+    fn args(self) -> Args {
+        match (self.call >> 32) as u32 {
+            REGS => Args::Regs,
+            a => Args::Heap(a),
+        }
+    }
 }
 
 /// Most arguments a call passes in the argument registers.
@@ -128,13 +183,15 @@ impl<'a, 'm> Solver<'a, 'm> {
 
     /// Calls the clauses of a clause's first body goal (see [`Direct`]).
     pub(crate) fn call_direct(&mut self, d: Direct) -> KrResult<bool> {
+        let pred = d.pred();
         self.inferences += 1;
         if self.inferences >= self.next_check {
-            let p = self.pred(d.pred);
+            let p = self.pred(pred);
             let (name, arity) = (p.name, p.arity);
             self.checkpoint(&|| format!("{}/{}", Term::Atom(name), arity))?;
         }
-        self.call_clauses(d.pred, None, d.args, d.next, d.depth)
+        let (next, depth) = (d.cont as u32, (d.cont >> 32) as u32);
+        self.call_clauses(pred, None, d.args(), next, depth)
     }
 
     /// Calls the clauses (and goal facts) of predicate `r` on the arguments at `args`; `goal`
@@ -275,8 +332,11 @@ impl<'a, 'm> Solver<'a, 'm> {
                 self.m.frames.len(),
                 self.m.st.strs.len(),
             );
-            if self.try_clause(pred, list[i], args, next, b) {
-                return Ok(true);
+            let ok = self.try_clause(pred, list[i], args, next, b);
+            // After the last candidate, a failed head leaves its bindings to the backtracking
+            // that follows (it restores an older choicepoint).
+            if ok || !has_choice {
+                return Ok(ok);
             }
             self.m.st.undo(tm);
             self.m.st.heap.truncate(hm);
@@ -337,12 +397,7 @@ impl<'a, 'm> Solver<'a, 'm> {
         }
         if let Some(pred) = direct {
             let args = place_args(m, &cl.code, cl.body[0]);
-            self.direct = Some(Direct {
-                pred,
-                args,
-                next: nx,
-                depth: d + 1,
-            });
+            self.direct = Direct::new(pred, args, nx, d + 1);
         }
         self.cont = nx;
         true
@@ -359,9 +414,9 @@ fn place_args(m: &mut Machine, code: &Code, goal: Cell) -> Args {
     };
     for (i, &c) in cells.iter().enumerate() {
         m.regs.0[i] = match c {
-            // By value: a copy made field by field and read back whole stalls the
-            // store-to-load forwarding.
             Cell::Ref(k) if (k as usize) < m.slots.len() => {
+                // By value: a copy made field by field and read back whole stalls the
+                // store-to-load forwarding.
                 let v = m.slots[k as usize];
                 if let Cell::Ref(u32::MAX) = v {
                     let v = m.st.new_var();
@@ -376,4 +431,33 @@ fn place_args(m: &mut Machine, code: &Code, goal: Cell) -> Args {
         };
     }
     Args::Regs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Args, Direct};
+    use crate::kr::knowledge::PredRef;
+
+    #[test]
+    fn a_packed_direct_call_reads_back_what_was_packed() {
+        let cases = [
+            (PredRef::User(0), Args::Regs, super::NONE, 0),
+            (PredRef::User(7), Args::Heap(0), 3, 1),
+            (PredRef::Lib(5), Args::Heap(u32::MAX - 1), 0, u32::MAX),
+            (PredRef::Lib((1 << 31) - 2), Args::Regs, u32::MAX - 1, 42),
+        ];
+        for (pred, args, next, depth) in cases {
+            let d = Direct::new(pred, args, next, depth);
+            assert!(d.pending());
+            assert_eq!(d.pred(), pred);
+            let same_args = match (d.args(), args) {
+                (Args::Regs, Args::Regs) => true,
+                (Args::Heap(a), Args::Heap(b)) => a == b,
+                _ => false,
+            };
+            assert!(same_args, "{args:?} read back as {:?}", d.args());
+            assert_eq!((d.cont as u32, (d.cont >> 32) as u32), (next, depth));
+        }
+        assert!(!Direct::NONE.pending());
+    }
 }

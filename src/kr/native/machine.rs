@@ -169,7 +169,7 @@ pub(crate) struct Solver<'a, 'm> {
     /// How many of `query_vars` (the first ones) were bound before the query ran.
     bound: usize,
     /// The call the run loop makes next, before reading any frame (see [`Direct`]).
-    pub(crate) direct: Option<Direct>,
+    pub(crate) direct: Direct,
 }
 
 impl<'a, 'm> Solver<'a, 'm> {
@@ -202,7 +202,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             next_check,
             query_vars: vars,
             bound,
-            direct: None,
+            direct: Direct::NONE,
         }
     }
 
@@ -344,7 +344,9 @@ impl<'a, 'm> Solver<'a, 'm> {
                     continue;
                 }
             }
-            if let Some(d) = self.direct.take() {
+            let d = self.direct;
+            if d.pending() {
+                self.direct = Direct::NONE;
                 let ok = match self.call_direct(d) {
                     Ok(ok) => ok,
                     Err(e) => self.recover(e)?,
