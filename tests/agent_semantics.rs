@@ -1063,3 +1063,37 @@ fn delete_removes_the_fact_its_bindings_name_and_reports_it() {
     assert_eq!(printed(&outs), ["2-b"]);
     assert_eq!(beliefs(&a), ["done", "seen(2,b)"]);
 }
+
+#[test]
+fn messages_of_this_cycle_answer_every_literal_that_reads_them() {
+    let mut a = agent_with(
+        "main module { program { forall bel(true) do (b).send(hello(1)) + (b).send(hello(2))
+            + (b).send(hello(3)) + exit-module. } }",
+        "a",
+        &["b"],
+        1,
+    );
+    let sent = step(&mut a, &[], &[]).messages;
+    assert_eq!(sent.len(), 3);
+    // The messages arrive in b's next cycle and wait aside until an action settles them into
+    // the mailbox: a literal asked under each answer of the literal before it, a first literal
+    // and a conjunct after another each see them as the cycle's first reader.
+    for (rule, wanted) in [
+        (
+            "forall bel(x(X)), bel(received(a, hello(X))) do print(X).",
+            ["1", "3"].as_slice(),
+        ),
+        ("if bel(received(a, hello(2))) then print(2).", &["2"]),
+        (
+            "forall bel(x(X), received(a, hello(X))) do print(X).",
+            &["1", "3"],
+        ),
+    ] {
+        let src = format!(
+            "init module {{ beliefs {{ x(1). x(3). }} }}
+             main module {{ program [order=linearall] {{ {rule} if true then exit-module. }} }}"
+        );
+        let mut b = agent_with(&src, "b", &["a"], 1);
+        assert_eq!(printed_after(&mut b, &sent), wanted, "{rule}");
+    }
+}
