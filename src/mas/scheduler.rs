@@ -239,57 +239,30 @@ const EXPLORE_EVERY: u32 = 128;
 const NEWEST: f64 = 0.1;
 
 /// The running mean time per cycle (nanoseconds) of rounds run on the calling thread alone
-/// and of rounds shared with the workers; 0 until measured (or while the way is tried afresh).
-///
-/// A shared round right after rounds run alone finds the workers asleep: waking them costs
-/// more than the round itself when rounds are short, so such a round says nothing about
-/// sharing rounds one after the other. It is run but not measured; the round after it is.
+/// and of rounds shared with the workers; 0 until measured.
 #[derive(Default)]
 struct Costs {
     inline: Cell<f64>,
     shared: Cell<f64>,
     /// Rounds that could be shared since the slower way was last tried.
     since_try: Cell<u32>,
-    /// The last measured round was shared: the workers are awake (spinning).
-    warm: Cell<bool>,
 }
 
 impl Costs {
     /// True when the next round of enough cycles should be shared.
     fn share(&self) -> bool {
         let (i, s) = (self.inline.get(), self.shared.get());
-        if i == 0.0 {
-            // Measure running alone first (and after a try of it began).
-            return false;
-        }
-        if s == 0.0 {
-            // Then sharing: a cold round, then a measured one.
-            return true;
+        if i == 0.0 || s == 0.0 {
+            // Measure both ways first.
+            return s == 0.0 && i > 0.0;
         }
         let n = self.since_try.get() + 1;
         self.since_try.set(n % EXPLORE_EVERY);
-        let sharing_faster = s < i;
-        if n == EXPLORE_EVERY {
-            // Try the slower way afresh: its next measured round replaces its mean (an old
-            // mean would take many rounds to forget a busy moment of the machine).
-            let slower = if sharing_faster {
-                &self.inline
-            } else {
-                &self.shared
-            };
-            slower.set(0.0);
-            return !sharing_faster;
-        }
-        sharing_faster
+        (s < i) != (n == EXPLORE_EVERY)
     }
 
-    /// Takes the time `took` of a round of `cycles` cycles run one way into its mean (not the
-    /// first shared round after rounds run alone: see [`Costs`]).
+    /// Takes the time `took` of a round of `cycles` cycles run one way into its mean.
     fn record(&self, shared: bool, took: Duration, cycles: usize) {
-        let was_warm = self.warm.replace(shared);
-        if shared && !was_warm {
-            return;
-        }
         let per = took.as_nanos() as f64 / cycles.max(1) as f64;
         let mean = if shared { &self.shared } else { &self.inline };
         let old = mean.get();
@@ -590,62 +563,22 @@ mod tests {
         }
     }
 
-    /// Runs `rounds` rounds of 10 cycles through `c`, each taking `took(shared, warm)`
-    /// microseconds; which rounds were shared.
-    fn drive(c: &Costs, rounds: usize, took: impl Fn(bool, bool) -> u64) -> Vec<bool> {
-        let mut warm = false;
-        (0..rounds)
-            .map(|_| {
-                let shared = c.share();
-                c.record(shared, Duration::from_micros(took(shared, warm)), 10);
-                warm = shared;
-                shared
-            })
-            .collect()
-    }
-
     #[test]
     fn rounds_are_shared_only_while_sharing_is_faster() {
         let c = Costs::default();
+        // Both ways are measured first: one round alone, then one shared.
+        assert!(!c.share());
+        c.record(false, Duration::from_micros(100), 10);
+        assert!(c.share());
+        c.record(true, Duration::from_micros(400), 10);
         // Sharing is slower: rounds run alone, but sharing is tried again now and then.
-        let ways = drive(&c, 1 + 2 + 2 * (EXPLORE_EVERY as usize + 1), |shared, _| {
-            if shared {
-                400
-            } else {
-                100
-            }
-        });
-        // Both ways are measured first: one round alone, then two shared (the first cold).
-        assert_eq!(ways[..4], [false, true, true, false]);
-        // Each later try of sharing is a cold round and a measured one.
-        assert_eq!(ways.iter().filter(|s| **s).count(), 2 + 2 * 2, "{ways:?}");
-        // Once sharing is the faster way, it is the one taken; running alone is tried once
-        // every EXPLORE_EVERY rounds.
-        let c = Costs::default();
-        let ways = drive(&c, 4 * EXPLORE_EVERY as usize, |shared, _| {
-            if shared {
-                20
-            } else {
-                100
-            }
-        });
-        let alone = ways.iter().filter(|s| !**s).count();
-        assert!((4..=5).contains(&alone), "{alone} rounds alone: {ways:?}");
-    }
-
-    #[test]
-    fn waking_the_workers_is_not_held_against_sharing() {
-        // A shared round after rounds alone waits for the workers to wake (here 100 times
-        // a warm shared round): sharing is still taken when warm shared rounds are faster.
-        let c = Costs::default();
-        let ways = drive(&c, 2 * EXPLORE_EVERY as usize, |shared, warm| {
-            match (shared, warm) {
-                (true, false) => 2000,
-                (true, true) => 20,
-                (false, _) => 100,
-            }
-        });
-        let shared = ways.iter().filter(|s| **s).count();
-        assert!(shared > 2 * EXPLORE_EVERY as usize - 5, "{ways:?}");
+        let shared: Vec<u32> = (1..=2 * EXPLORE_EVERY).filter(|_| c.share()).collect();
+        assert_eq!(shared.len(), 2);
+        // Once sharing has become the faster way, it is the one taken.
+        for _ in 0..40 {
+            c.record(true, Duration::from_micros(20), 10);
+        }
+        let alone = (1..=EXPLORE_EVERY).filter(|_| !c.share()).count();
+        assert_eq!(alone, 1);
     }
 }
