@@ -385,13 +385,15 @@ impl Pool {
     ) -> Result<(), PoolError> {
         let cycles = jobs.len();
         let shareable = cycles >= INLINE_BELOW && !self.workers.is_empty();
-        let start = Instant::now();
-        if !shareable || !self.costs.share() {
+        if !shareable {
+            // Rounds this short are never shared, so their time is not taken.
             step(&self.agents, clock, jobs.drain(..), out)?;
-            if shareable {
-                self.costs.record(false, start.elapsed(), cycles);
-            }
+        } else if !self.costs.share() {
+            let start = Instant::now();
+            step(&self.agents, clock, jobs.drain(..), out)?;
+            self.costs.record(false, start.elapsed(), cycles);
         } else {
+            let start = Instant::now();
             self.shared(jobs, clock, out)?;
             self.costs.record(true, start.elapsed(), cycles);
         }
