@@ -58,15 +58,27 @@ pub struct CycleOutput {
 impl CycleOutput {
     /// True when nothing was recorded: the output equals [`CycleOutput::default`].
     fn is_clear(&self) -> bool {
-        self.env_actions.is_empty()
-            && self.messages.is_empty()
-            && self.events.is_empty()
-            && self.printed.is_empty()
-            && self.stopped.is_none()
-            && self.actions == 0
-            && self.env_sites.is_empty()
-            && !self.waiting
-            && !self.skipped
+        // Destructured, so that a field added later must be added here too.
+        let CycleOutput {
+            env_actions,
+            messages,
+            events,
+            printed,
+            stopped,
+            actions,
+            env_sites,
+            waiting,
+            skipped,
+        } = self;
+        env_actions.is_empty()
+            && messages.is_empty()
+            && events.is_empty()
+            && printed.is_empty()
+            && stopped.is_none()
+            && *actions == 0
+            && env_sites.is_empty()
+            && !waiting
+            && !skipped
     }
 }
 
