@@ -905,6 +905,26 @@ fn an_open_question_received_is_deleted_like_any_message() {
 }
 
 #[test]
+fn an_open_question_keeps_a_repeated_variable_shared() {
+    // `?q(Z, Z)` asks about one thing twice: the parts a condition names stay the same
+    // variable, whether a plan, the engine or a second literal reads them, and the message is
+    // deleted with the variables the condition gave.
+    let src = "main module { program [order=linearall] {
+        if bel(received(b, int(q(X, Y))), X == Y) then print(same).
+        if bel(received(b, int(q(X, Y)))), bel(X == Y) then print(again).
+        if bel(received(b, int(q(X, Y)))) then delete(received(b, int(q(X, Y)))) + print(gone).
+        if bel(received(_, _)) then print(left).
+    } }";
+    let mut a = agent_with(src, "a", &["b"], 1);
+    let p = printed_after(&mut a, &[msg("b", "int(q(Z, Z))")]);
+    assert_eq!(p, ["same", "again", "gone"]);
+    // Two different variables are not the same.
+    let mut a = agent_with(src, "a", &["b"], 1);
+    let p = printed_after(&mut a, &[msg("b", "int(q(Z, W))")]);
+    assert_eq!(p, ["gone"]);
+}
+
+#[test]
 fn all_needs_every_model_and_some_any() {
     let src = "main module { program [order=linearall] {
         forall allother.bel(p(X)), not(bel(seen(allother(X)))) do print(allother(X)) + insert(seen(allother(X))).

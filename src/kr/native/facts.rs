@@ -124,7 +124,17 @@ impl<'a> Solver<'a, '_> {
                 self.m.st.trail.len(),
                 self.m.st.strs.len(),
             );
-            if self.unify_fact(goal, t) {
+            let mut ok = self.unify_fact(goal, t);
+            if std::mem::take(&mut self.fact_vars) {
+                // A fact with variables: matched part by part, each part's variables would be
+                // fresh apart (`q(Z, Z)` would not share Z). Matched whole on a copy instead.
+                self.m.st.undo(tm);
+                self.m.st.heap.truncate(hm);
+                self.m.st.strs.truncate(sm);
+                let copy = self.m.st.put_term(t, &mut Vec::new());
+                ok = self.m.st.unify(goal, copy);
+            }
+            if ok {
                 self.cont = next;
                 return Ok(true);
             }
@@ -192,13 +202,25 @@ impl<'a> Solver<'a, '_> {
         while let Some((c, t)) = work.pop() {
             let c = self.m.st.deref(c);
             match (c, t) {
-                (_, Term::Var(_)) => {}
+                (_, Term::Var(_)) => {
+                    // The caller matches the whole fact again (see `Solver::fact_vars`).
+                    self.fact_vars = true;
+                    return false;
+                }
                 (Cell::Ref(a), _) => {
                     let v = match t {
                         Term::Atom(s) => Cell::Atom(*s),
                         Term::Int(i) => Cell::Int(*i),
                         Term::Float(f) => Cell::Flt(f.0),
-                        _ => self.m.st.put_term(t, &mut Vec::new()),
+                        _ => {
+                            let mut vars = Vec::new();
+                            let v = self.m.st.put_term(t, &mut vars);
+                            if !vars.is_empty() {
+                                self.fact_vars = true;
+                                return false;
+                            }
+                            v
+                        }
                     };
                     self.m.st.bind(a, v);
                 }

@@ -170,6 +170,9 @@ pub(crate) struct Solver<'a, 'm> {
     bound: usize,
     /// The call the run loop makes next, before reading any frame (see [`Direct`]).
     pub(crate) direct: Direct,
+    /// Set when matching a stored fact met a variable of the fact (an open message): the
+    /// match is then redone on a copy of the whole fact (see `Solver::try_facts`).
+    pub(crate) fact_vars: bool,
 }
 
 impl<'a, 'm> Solver<'a, 'm> {
@@ -203,6 +206,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             query_vars: vars,
             bound,
             direct: Direct::NONE,
+            fact_vars: false,
         }
     }
 
