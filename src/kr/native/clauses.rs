@@ -326,21 +326,14 @@ impl<'a, 'm> Solver<'a, 'm> {
                 self.m.cps.truncate(b as usize);
                 has_choice = false;
             }
-            let (hm, tm, fm, sm) = (
-                self.m.st.heap.len(),
-                self.m.st.trail.len(),
-                self.m.frames.len(),
-                self.m.st.strs.len(),
-            );
+            let (mark, fm) = (self.m.st.mark(), self.m.frames.len());
             let ok = self.try_clause(pred, list[i], args, next, b);
             // After the last candidate, a failed head leaves its bindings to the backtracking
             // that follows (it restores an older choicepoint).
             if ok || !has_choice {
                 return Ok(ok);
             }
-            self.m.st.undo(tm);
-            self.m.st.heap.truncate(hm);
-            self.m.st.strs.truncate(sm);
+            self.m.st.rewind(mark);
             self.m.frames.truncate(fm);
             i = j;
         }

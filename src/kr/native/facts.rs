@@ -119,18 +119,12 @@ impl<'a> Solver<'a, '_> {
                 self.m.cps.truncate(b as usize);
                 has_choice = false;
             }
-            let (hm, tm, sm) = (
-                self.m.st.heap.len(),
-                self.m.st.trail.len(),
-                self.m.st.strs.len(),
-            );
+            let mark = self.m.st.mark();
             let mut ok = self.unify_fact(goal, t);
             if std::mem::take(&mut self.fact_vars) {
                 // A fact with variables: matched part by part, each part's variables would be
                 // fresh apart (`q(Z, Z)` would not share Z). Matched whole on a copy instead.
-                self.m.st.undo(tm);
-                self.m.st.heap.truncate(hm);
-                self.m.st.strs.truncate(sm);
+                self.m.st.rewind(mark);
                 let copy = self.m.st.put_term(t, &mut Vec::new());
                 ok = self.m.st.unify(goal, copy);
             }
@@ -138,9 +132,7 @@ impl<'a> Solver<'a, '_> {
                 self.cont = next;
                 return Ok(true);
             }
-            self.m.st.undo(tm);
-            self.m.st.heap.truncate(hm);
-            self.m.st.strs.truncate(sm);
+            self.m.st.rewind(mark);
             cand = after.map(|f| f.0);
         }
     }

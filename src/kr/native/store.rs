@@ -23,6 +23,14 @@ pub(crate) enum Cell {
     Fun(Sym, u32),
 }
 
+/// The store's heap, trail and string table lengths at a point of a proof (see [`Store::mark`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Mark {
+    heap: usize,
+    trail: usize,
+    strs: usize,
+}
+
 /// The heap, the trail and the string table of one query.
 #[derive(Default)]
 pub(crate) struct Store {
@@ -177,6 +185,24 @@ impl Store {
             let Some(a) = self.trail.pop() else { break };
             self.heap[a as usize] = Cell::Ref(a);
         }
+    }
+
+    /// The point to come back to with [`Store::rewind`].
+    #[inline]
+    pub fn mark(&self) -> Mark {
+        Mark {
+            heap: self.heap.len(),
+            trail: self.trail.len(),
+            strs: self.strs.len(),
+        }
+    }
+
+    /// Undoes the bindings and drops the cells and strings made since `mark`.
+    #[inline]
+    pub fn rewind(&mut self, mark: Mark) {
+        self.undo(mark.trail);
+        self.heap.truncate(mark.heap);
+        self.strs.truncate(mark.strs);
     }
 
     /// A string cell.
