@@ -539,8 +539,7 @@ fn goal_fact_answers(
 
 /// True when `t` has the anonymous variable `_`.
 fn has_anonymous(t: &Term) -> bool {
-    let anonymous =
-        |a: &Term| matches!(a, Term::Var(v) if *v == crate::term::well_known::UNDERSCORE);
+    let anonymous = |a: &Term| matches!(a, Term::Var(v) if *v == wk::UNDERSCORE);
     // A query of atomic arguments (the usual `fib(N)`) is looked at without a work stack.
     if let Term::Compound(c) = t {
         if !c.args.iter().any(|a| matches!(a, Term::Compound(_))) {

@@ -546,12 +546,17 @@ mod tests {
     use crate::kr::{Engine, Knowledge, NativeEngine, View};
     use crate::syntax::prolog::Reader;
 
-    #[test]
-    fn second_argument_index_keeps_answers_and_order() {
+    /// The knowledge of the Prolog text `src`, and the reader that read it (for queries).
+    fn load(src: &str) -> (Reader, std::sync::Arc<Knowledge>) {
         let mut r = Reader::new("t");
-        let src = "on(a, b). on(b, c). on(X, d). on(c, d). on(e, b). on(f, Y).";
         let (clauses, _) = r.clauses(src, 0);
         let kn = Knowledge::load(&clauses.into_iter().map(|c| c.term).collect::<Vec<_>>()).unwrap();
+        (r, kn)
+    }
+
+    #[test]
+    fn second_argument_index_keeps_answers_and_order() {
+        let (mut r, kn) = load("on(a, b). on(b, c). on(X, d). on(c, d). on(e, b). on(f, Y).");
         let mut e = NativeEngine::new(0);
         let mut answers = |q: &str| -> Vec<String> {
             let q = r.term(q, 0).unwrap().term;
@@ -573,10 +578,8 @@ mod tests {
 
     #[test]
     fn a_body_calling_the_atom_call_loads_and_answers_like_an_unknown_predicate() {
-        let mut r = Reader::new("t");
-        let src = "t :- call. u(X) :- call(call, p, X). v :- call(call, true). w :- foo.";
-        let (clauses, _) = r.clauses(src, 0);
-        let kn = Knowledge::load(&clauses.into_iter().map(|c| c.term).collect::<Vec<_>>()).unwrap();
+        let (mut r, kn) =
+            load("t :- call. u(X) :- call(call, p, X). v :- call(call, true). w :- foo.");
         let mut e = NativeEngine::new(0);
         let view = View::beliefs(&kn, &[]);
         let mut count = |q: &str| e.query(&view, &r.term(q, 0).unwrap().term).map(|a| a.len());
