@@ -265,16 +265,15 @@ impl Code {
         for (a, c) in (base..).zip(&mut heap[base as usize..]) {
             match *c {
                 // A set slot's value is copied whole (see `Solver::try_clause`).
-                Cell::Ref(k) => {
-                    *c = match slots.get(k as usize) {
-                        Some(&v) if !matches!(v, Cell::Ref(u32::MAX)) => v,
-                        Some(_) => {
-                            slots[k as usize] = Cell::Ref(a);
-                            Cell::Ref(a)
-                        }
-                        None => Cell::Ref(a),
+                // A new variable is written whole, as the callee reads it (see `write_ref`).
+                Cell::Ref(k) => match slots.get(k as usize) {
+                    Some(&v) if !matches!(v, Cell::Ref(u32::MAX)) => *c = v,
+                    Some(_) => {
+                        write_ref(&mut slots[k as usize], a);
+                        write_ref(c, a);
                     }
-                }
+                    None => write_ref(c, a),
+                },
                 Cell::Ptr(o) => *c = Cell::Ptr(o - from + base),
                 Cell::Str(j) => {
                     strs.push(self.strs[j as usize].clone());
@@ -467,6 +466,31 @@ impl Cell {
     }
 }
 
+/// Writes `Cell::Ref(a)` into `cell` in one 16-byte store. The compiler writes a `Ref` field
+/// by field (tag, address, padding); a whole-cell load of it soon after (a clause's slot set to
+/// a new variable during the head's copy, then passed on as an argument) cannot be forwarded
+/// from those narrower stores and stalls until they reach the cache.
+#[inline(always)]
+pub(crate) fn write_ref(cell: &mut Cell, a: u32) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{__m128i, _mm_set_epi32, _mm_storeu_si128};
+        // SAFETY: `Cell` is `repr(u32)`: a `Ref` is the tag 0 in bytes 0..4 and the address in
+        // bytes 4..8; bytes 8..16 are padding for it, so any value there is valid. SSE2 is part
+        // of x86_64, and the store is unaligned, into memory `cell` borrows mutably.
+        unsafe {
+            _mm_storeu_si128(
+                (cell as *mut Cell).cast::<__m128i>(),
+                _mm_set_epi32(0, 0, a as i32, 0),
+            )
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        *cell = Cell::Ref(a);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::{Code, UNSET};
@@ -528,5 +552,27 @@ mod tests {
             shape(&a),
             "a copy of the heap term builds the same term"
         );
+    }
+
+    #[test]
+    fn a_ref_written_whole_reads_back_as_that_ref_over_any_cell() {
+        use super::write_ref;
+        use crate::kr::native::store::Cell;
+        let olds = [
+            UNSET,
+            Cell::Int(-1),
+            Cell::Flt(f64::NAN),
+            Cell::Fun(Sym::from("f"), 9),
+        ];
+        for old in olds {
+            for a in [0, 1, 0x8000_0000, u32::MAX - 1] {
+                let mut cell = old;
+                write_ref(&mut cell, a);
+                assert!(
+                    matches!(cell, Cell::Ref(x) if x == a),
+                    "{old:?} <- {a}: {cell:?}"
+                );
+            }
+        }
     }
 }

@@ -8,10 +8,12 @@ use std::cmp::Ordering;
 use std::sync::Arc;
 
 /// One heap cell. Compound terms are a `Fun` header followed by their arguments; `Ptr` points at
-/// the header. An unbound variable is a `Ref` to itself.
+/// the header. An unbound variable is a `Ref` to itself. `repr(u32)` fixes the layout that
+/// [`write_ref`](super::code::write_ref) relies on: the tag in the first four bytes, a `Ref`'s address in the next four.
 #[derive(Clone, Copy, Debug)]
+#[repr(u32)]
 pub(crate) enum Cell {
-    Ref(u32),
+    Ref(u32) = 0,
     Atom(Sym),
     Int(i64),
     Flt(f64),
