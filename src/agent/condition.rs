@@ -10,6 +10,7 @@ use crate::syntax::ast::MentalOp;
 use crate::term::{well_known as wk, Subst, Sym, Term};
 use smallvec::{smallvec, SmallVec};
 use std::hash::{Hash, Hasher};
+use std::sync::Arc;
 
 /// Extends `base` with the bindings of `answer`.
 pub fn compose(base: &Subst, answer: &Subst) -> Subst {
@@ -132,7 +133,8 @@ pub struct Evaluation {
     pub answers: Found,
     pub cut: bool,
     /// The first literal without answers (its index) and the answers of the literals before
-    /// it; `None` when the condition holds.
+    /// it; `None` when the condition holds. Those answers are left out (empty) when they were
+    /// kept goal answers, which are kept only while `goal why` does not record.
     pub failed: Option<(usize, Found)>,
 }
 
@@ -149,9 +151,32 @@ pub fn evaluate(
     }
     let mut cut = false;
     let mut answers = Found::new();
+    let mut start = 0;
+    if let Some(kept) = kept_first(cx, lits, base) {
+        // The first level is the kept answers (the first `cap`), read in place.
+        let level = &kept[..kept.len().min(cap)];
+        cut |= kept.len() > cap;
+        if level.is_empty() {
+            return Ok(Evaluation {
+                answers: Found::new(),
+                cut,
+                failed: Some((0, smallvec![base.clone()])),
+            });
+        }
+        let next = next_level(cx, &lits[1], level, cap, &mut cut)?;
+        if next.items.is_empty() {
+            return Ok(Evaluation {
+                answers: Found::new(),
+                cut,
+                failed: Some((1, Found::new())),
+            });
+        }
+        answers = next.items;
+        start = 2;
+    }
     // The first literal's only theta: `base` (mostly empty, so a copy costs nothing).
     let mut first = [base.clone()];
-    for (i, lit) in lits.iter().enumerate() {
+    for (i, lit) in lits.iter().enumerate().skip(start) {
         let level: &mut [Subst] = match i {
             0 => &mut first,
             _ => &mut answers,
@@ -226,6 +251,88 @@ pub fn evaluate(
         cut,
         failed: None,
     })
+}
+
+/// The answers of the first literal of `lits` (of two or more) kept in, or now put into, the
+/// goal memo: when the memo is live, `base` is empty and the literal is a positive `a-goal` or
+/// `goal-a` about this agent's goals (no single-goal restriction) that its goal facts decide
+/// (see `GoalMemo` for why the kept answers are exact). `None`: evaluate it as usual.
+fn kept_first(cx: &CondCtx<'_>, lits: &[Lit], base: &Subst) -> Option<Arc<Found>> {
+    let [Lit::Mental {
+        negated: false,
+        top_level,
+        about: None,
+        op: op @ (MentalOp::AGoal | MentalOp::GoalA),
+        query,
+        ..
+    }, _, ..] = lits
+    else {
+        return None;
+    };
+    let ms = cx.ms;
+    if !base.is_empty() || cx.only.is_some() || !ms.goal_memo.borrow().live {
+        return None;
+    }
+    if let Some(kept) = ms.goal_memo.borrow().get(*op, *top_level, query) {
+        return Some(kept);
+    }
+    // As `literal` under the empty substitution, when `goal_fact_answers` decides.
+    let gq = GoalQuery::new(&ms.knowledge, query);
+    let b = match top_level {
+        true => ms.attention.top_level(),
+        false => ms.attention.current(),
+    };
+    let mut raw = AnswerSet::default();
+    if !goal_fact_answers(ms, b, &gq, *op == MentalOp::GoalA, &mut raw) {
+        return None;
+    }
+    let kept = Arc::new(raw.items);
+    ms.goal_memo
+        .borrow_mut()
+        .put(*op, *top_level, query, kept.clone());
+    Some(kept)
+}
+
+/// The distinct answers of `lit` under each theta of `level` (read in place: each answer
+/// extends a copy of its theta), at most `cap` (`cut` is set when more were found or a query
+/// stopped there).
+fn next_level(
+    cx: &CondCtx<'_>,
+    lit: &Lit,
+    level: &[Subst],
+    cap: usize,
+    cut: &mut bool,
+) -> Result<AnswerSet, Fault> {
+    let mut next = AnswerSet::default();
+    let bound = bound_by_any(level);
+    let batch = planned(cx, lit);
+    let mut found = Found::new();
+    'each: for theta in level {
+        match batch
+            .as_ref()
+            .and_then(|b| b.answers_into(theta, cap, &mut found))
+        {
+            Some(stopped) => {
+                *cut |= stopped;
+                distinct(&mut found);
+            }
+            None => found = literal(cx, lit, theta, cap, cut)?,
+        }
+        next.items.reserve(found.len());
+        for a in found.drain(..) {
+            if next.items.len() >= cap {
+                *cut = true;
+                break 'each;
+            }
+            // As in `evaluate`: answers binding only variables no theta binds are new.
+            let fresh = a.iter().all(|(v, _)| !bound.contains(&v));
+            match fresh {
+                true => next.push_new(compose(theta, &a)),
+                false => next.push(compose(theta, &a)),
+            }
+        }
+    }
+    Ok(next)
 }
 
 /// True when the condition `lits` provably has no answer under `theta` without running it:

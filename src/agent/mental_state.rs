@@ -19,8 +19,10 @@ use std::cell::RefCell;
 use std::sync::Arc;
 
 mod goal_mark;
+mod goal_memo;
 mod goal_query;
 use goal_mark::GoalMark;
+pub use goal_memo::GoalMemo;
 pub use goal_query::GoalQuery;
 
 /// The stores of an agent.
@@ -46,6 +48,9 @@ pub struct MentalState {
     /// (with the predicates they inserted) while nothing else changed: see
     /// [`MentalState::goal_check`]. `None`: the next check looks at every goal.
     goal_mark: Option<GoalMark>,
+    /// Answers of goal literals kept while the module loop only evaluates rules (see
+    /// [`GoalMemo`]; read and filled by condition evaluation, emptied by the module loop).
+    pub goal_memo: RefCell<GoalMemo>,
 }
 
 /// The effect of an update on the belief base and mailbox.
@@ -83,6 +88,7 @@ impl MentalState {
                 other => other.to_string(),
             }),
             goal_mark: None,
+            goal_memo: RefCell::default(),
         }
     }
 

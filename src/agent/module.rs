@@ -184,7 +184,13 @@ impl Core {
         main_ctx: bool,
     ) -> Result<RunEnd, RuntimeError> {
         let mut steps: u64 = 0;
+        // Set by an iteration that only evaluated a rule which found no answers: the next
+        // iteration sees the mental state that rule saw, so kept goal answers stay valid.
+        let mut quiet = false;
         loop {
+            if !std::mem::take(&mut quiet) {
+                self.ms.goal_memo.get_mut().clear();
+            }
             steps += 1;
             // The clock is read every 64 steps only: a step is cheap, reading the clock not.
             if steps.is_multiple_of(64) {
@@ -228,9 +234,13 @@ impl Core {
                         if self.why.is_some() {
                             self.why_evaluating(prog, stack, b, ri);
                         }
-                        let answers = self
-                            .rule_answers(rule, &s, &prog.file)
-                            .map_err(|e| self.error(prog, Some((b, ri, rule.line)), e))?;
+                        // Kept goal answers are read and made only while `goal why` is off.
+                        self.ms.goal_memo.get_mut().live = self.why.is_none();
+                        let answers = self.rule_answers(rule, &s, &prog.file);
+                        self.ms.goal_memo.get_mut().live = false;
+                        let answers =
+                            answers.map_err(|e| self.error(prog, Some((b, ri, rule.line)), e))?;
+                        quiet = answers.is_empty();
                         if !answers.is_empty() {
                             stack.push(Frame::Rule(RuleFrame {
                                 block: b,
