@@ -293,19 +293,27 @@ fn step(
     done: &mut Done,
 ) -> Result<(), PoolError> {
     for job in jobs {
-        let i = job.0;
-        done.push((i, run_one(agents, clock, job)?));
+        // Built in place: the output is not moved through `run_one`'s result and the push.
+        done.push((job.0, CycleOutput::default()));
+        let Some((_, out)) = done.last_mut() else {
+            continue;
+        };
+        if let Err(e) = run_one_into(agents, clock, job, out) {
+            done.pop();
+            return Err(e);
+        }
     }
     Ok(())
 }
 
-/// Runs one cycle of `job` on this thread with the agent's clock at `clock`.
+/// [`run_one`] writing the cycle's output over `out`.
 #[inline]
-fn run_one(
+fn run_one_into(
     agents: &[Mutex<Agent>],
     clock: Option<f64>,
     (i, percepts, messages): Job,
-) -> Result<CycleOutput, PoolError> {
+    out: &mut CycleOutput,
+) -> Result<(), PoolError> {
     let cell = agents
         .get(i)
         .ok_or_else(|| PoolError(format!("no agent with index {i}")))?;
@@ -316,9 +324,21 @@ fn run_one(
     // through the run loop.
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         a.set_clock(clock);
-        a.step(&percepts, &messages)
+        a.step_into(&percepts, &messages, out)
     }))
     .map_err(|_| PoolError(format!("agent {i} panicked")))
+}
+
+/// Runs one cycle of `job` on this thread with the agent's clock at `clock`.
+#[inline]
+fn run_one(
+    agents: &[Mutex<Agent>],
+    clock: Option<f64>,
+    job: Job,
+) -> Result<CycleOutput, PoolError> {
+    let mut out = CycleOutput::default();
+    run_one_into(agents, clock, job, &mut out)?;
+    Ok(out)
 }
 
 impl Pool {
@@ -471,6 +491,23 @@ mod tests {
 
     fn printed(out: Done) -> Vec<(usize, Vec<String>)> {
         out.into_iter().map(|(i, o)| (i, o.printed)).collect()
+    }
+
+    #[test]
+    fn a_cycle_written_over_a_used_output_gives_what_a_fresh_output_gets() {
+        let (mut fresh, mut reused) = (agents(1), agents(1));
+        let mut out = CycleOutput::default();
+        for _ in 0..3 {
+            // What the output held before goes to the agent, which must not carry it into
+            // its next cycle.
+            out.printed.push("stale".into());
+            out.actions = 7;
+            let want = fresh[0].step(&[], &[]);
+            reused[0].step_into(&[], &[], &mut out);
+            assert_eq!(out.printed, want.printed);
+            assert_eq!(out.printed.len(), 1, "{:?}", out.printed);
+            assert_eq!(out.actions, want.actions);
+        }
     }
 
     #[test]
