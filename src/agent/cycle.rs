@@ -469,8 +469,8 @@ impl Agent {
         out
     }
 
-    /// [`Agent::step`] writing the cycle's output over `out`: the run loop builds each output in its place in the round's
-    /// list instead of moving the 240-byte value through every caller.
+    /// [`Agent::step`] writing the cycle's output over `out`: the run loop builds each output
+    /// in its place in the round's list instead of moving the 240-byte value through every caller.
     pub fn step_into(&mut self, percepts: &[Term], messages: &[Message], out: &mut CycleOutput) {
         if let Some(s) = &self.stopped {
             *out = CycleOutput {

@@ -466,6 +466,9 @@ impl Cell {
     }
 }
 
+// `write_ref` stores 16 bytes into one cell: a smaller cell would overwrite its neighbour.
+const _: () = assert!(std::mem::size_of::<Cell>() == 16 && std::mem::align_of::<Cell>() >= 8);
+
 /// Writes `Cell::Ref(a)` into `cell` in one 16-byte store. The compiler writes a `Ref` field
 /// by field (tag, address, padding); a whole-cell load of it soon after (a clause's slot set to
 /// a new variable during the head's copy, then passed on as an argument) cannot be forwarded

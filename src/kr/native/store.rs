@@ -9,7 +9,8 @@ use std::sync::Arc;
 
 /// One heap cell. Compound terms are a `Fun` header followed by their arguments; `Ptr` points at
 /// the header. An unbound variable is a `Ref` to itself. `repr(u32)` fixes the layout that
-/// [`write_ref`](super::code::write_ref) relies on: the tag in the first four bytes, a `Ref`'s address in the next four.
+/// [`write_ref`](super::code::write_ref) relies on: the tag in the first four bytes, a `Ref`'s
+/// address in the next four.
 #[derive(Clone, Copy, Debug)]
 #[repr(u32)]
 pub(crate) enum Cell {
