@@ -163,7 +163,7 @@ pub fn evaluate(
                 failed: Some((0, smallvec![base.clone()])),
             });
         }
-        let next = next_level(cx, &lits[1], level, cap, &mut cut)?;
+        let next = next_level(cx, &lits[1], Thetas::Kept(level), cap, &mut cut)?;
         if next.items.is_empty() {
             return Ok(Evaluation {
                 answers: Found::new(),
@@ -181,55 +181,7 @@ pub fn evaluate(
             0 => &mut first,
             _ => &mut answers,
         };
-        let mut next = AnswerSet::default();
-        let bound = bound_by_any(level);
-        // A planned `bel` literal runs its plan under each theta into one buffer.
-        let batch = planned(cx, lit);
-        let mut found = Found::new();
-        'each: for theta in level.iter_mut() {
-            match batch
-                .as_ref()
-                .and_then(|b| b.answers_into(theta, cap, &mut found))
-            {
-                Some(stopped) => {
-                    cut |= stopped;
-                    distinct(&mut found);
-                }
-                None => found = literal(cx, lit, theta, cap, &mut cut)?,
-            }
-            let count = found.len();
-            if count == 0 {
-                continue;
-            }
-            next.items.reserve(count);
-            for (j, a) in found.drain(..).enumerate() {
-                if next.items.len() >= cap {
-                    cut = true;
-                    break 'each;
-                }
-                // Answers of one theta are distinct, and answers that only bind variables
-                // no theta binds differ from those of every other theta: no search needed.
-                let fresh = a.iter().all(|(v, _)| !bound.contains(&v));
-                let full = if theta.is_empty() {
-                    // Under an empty theta (a condition's first literal, mostly) the answer
-                    // is the full answer already: no copy.
-                    a
-                } else if j + 1 == count {
-                    // The last answer under a theta extends that theta itself (it is not
-                    // needed again: a level that ends empty took none).
-                    let mut t = std::mem::take(theta);
-                    t.extend(&a);
-                    t
-                } else {
-                    compose(theta, &a)
-                };
-                if fresh {
-                    next.push_new(full);
-                } else {
-                    next.push(full);
-                }
-            }
-        }
+        let next = next_level(cx, lit, Thetas::Own(level), cap, &mut cut)?;
         if next.items.is_empty() {
             let before = match i {
                 0 => smallvec![base.clone()],
@@ -293,21 +245,47 @@ fn kept_first(cx: &CondCtx<'_>, lits: &[Lit], base: &Subst) -> Option<Arc<Found>
     Some(kept)
 }
 
-/// The distinct answers of `lit` under each theta of `level` (read in place: each answer
-/// extends a copy of its theta), at most `cap` (`cut` is set when more were found or a query
-/// stopped there).
+/// The thetas of a condition level.
+enum Thetas<'a> {
+    /// The condition's own: the last answer under a theta may take that theta.
+    Own(&'a mut [Subst]),
+    /// Kept goal answers (the goal memo's), read in place.
+    Kept(&'a [Subst]),
+}
+
+impl Thetas<'_> {
+    fn all(&self) -> &[Subst] {
+        match self {
+            Thetas::Own(l) => l,
+            Thetas::Kept(l) => l,
+        }
+    }
+
+    /// Theta `k` taken, when it is the condition's own (it is not needed again).
+    fn take(&mut self, k: usize) -> Option<Subst> {
+        match self {
+            Thetas::Own(l) => Some(std::mem::take(&mut l[k])),
+            Thetas::Kept(_) => None,
+        }
+    }
+}
+
+/// The distinct answers of `lit` under each theta of `level`, each extending its theta, at
+/// most `cap` (`cut` is set when more were found or a query stopped there).
 fn next_level(
     cx: &CondCtx<'_>,
     lit: &Lit,
-    level: &[Subst],
+    mut level: Thetas<'_>,
     cap: usize,
     cut: &mut bool,
 ) -> Result<AnswerSet, Fault> {
     let mut next = AnswerSet::default();
-    let bound = bound_by_any(level);
+    let bound = bound_by_any(level.all());
+    // A planned `bel` literal runs its plan under each theta into one buffer.
     let batch = planned(cx, lit);
     let mut found = Found::new();
-    'each: for theta in level {
+    'each: for k in 0..level.all().len() {
+        let theta = &level.all()[k];
         match batch
             .as_ref()
             .and_then(|b| b.answers_into(theta, cap, &mut found))
@@ -318,17 +296,32 @@ fn next_level(
             }
             None => found = literal(cx, lit, theta, cap, cut)?,
         }
-        next.items.reserve(found.len());
-        for a in found.drain(..) {
+        let count = found.len();
+        next.items.reserve(count);
+        for (j, a) in found.drain(..).enumerate() {
             if next.items.len() >= cap {
                 *cut = true;
                 break 'each;
             }
-            // As in `evaluate`: answers binding only variables no theta binds are new.
+            // Answers of one theta are distinct, and answers that only bind variables
+            // no theta binds differ from those of every other theta: no search needed.
             let fresh = a.iter().all(|(v, _)| !bound.contains(&v));
-            match fresh {
-                true => next.push_new(compose(theta, &a)),
-                false => next.push(compose(theta, &a)),
+            let full = if level.all()[k].is_empty() {
+                // Under an empty theta (a condition's first literal, mostly) the answer
+                // is the full answer already: no copy.
+                a
+            } else if let Some(mut t) = (j + 1 == count).then(|| level.take(k)).flatten() {
+                // The last answer under a theta extends that theta itself (a level that
+                // ends empty took none).
+                t.extend(&a);
+                t
+            } else {
+                compose(&level.all()[k], &a)
+            };
+            if fresh {
+                next.push_new(full);
+            } else {
+                next.push(full);
             }
         }
     }
