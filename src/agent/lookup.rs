@@ -147,27 +147,32 @@ fn match_in(
 }
 
 /// The number of cells of a ground term (`None` when it has a variable or is too large).
+#[inline]
 pub(super) fn size_if_ground(t: &Term) -> Option<usize> {
     match t {
         Term::Var(_) => None,
-        Term::Compound(_) => {
-            let mut n = 0;
-            let mut stack: SmallVec<[&Term; 16]> = smallvec![t];
-            while let Some(t) = stack.pop() {
-                n += 1;
-                if n > MAX_CELLS {
-                    return None;
-                }
-                match t {
-                    Term::Var(_) => return None,
-                    Term::Compound(c) => stack.extend(c.args.iter()),
-                    _ => {}
-                }
-            }
-            Some(n)
-        }
+        Term::Compound(_) => compound_size_if_ground(t),
         _ => Some(1),
     }
+}
+
+/// [`size_if_ground`] of a compound term (out of line: the atomic case is the common one).
+#[inline(never)]
+fn compound_size_if_ground(t: &Term) -> Option<usize> {
+    let mut n = 0;
+    let mut stack: SmallVec<[&Term; 16]> = smallvec![t];
+    while let Some(t) = stack.pop() {
+        n += 1;
+        if n > MAX_CELLS {
+            return None;
+        }
+        match t {
+            Term::Var(_) => return None,
+            Term::Compound(c) => stack.extend(c.args.iter()),
+            _ => {}
+        }
+    }
+    Some(n)
 }
 
 /// The truth of an arithmetic comparison `q` (`<`, `>`, `=<`, `>=`, `=:=`, `=\=`) whose sides

@@ -55,6 +55,13 @@ impl Subst {
         }
     }
 
+    /// Binds `var`, which this substitution does not bind yet (no search for a binding to
+    /// replace).
+    pub fn bind_new(&mut self, var: Sym, term: Term) {
+        debug_assert!(self.get(var).is_none());
+        self.bindings.push((var, term));
+    }
+
     /// This substitution with the bindings of `more` added (replacing bindings of the same
     /// variables), allocated once.
     pub fn extended(&self, more: &Subst) -> Subst {

@@ -190,7 +190,8 @@ impl<'a> Run<'a, '_> {
                 continue;
             }
             if let Some(val) = self.vals[k] {
-                s.bind(*v, val.term());
+                // The plan's variables are distinct: no earlier binding to look for.
+                s.bind_new(*v, val.term());
             }
         }
         self.out.push(s);
@@ -440,9 +441,15 @@ impl<'a> Run<'a, '_> {
         if args.len() != p.args.len() {
             return Ok(false);
         }
-        let mut work: SmallVec<[(&'a Arg, &'a Term); 8]> =
-            p.args.iter().zip(args.iter()).rev().collect();
-        while let Some((p, f)) = work.pop() {
+        self.match_parts(&p.args, args)
+    }
+
+    /// Matches the pattern parts `parts` against the fact parts `args` (as many) left to
+    /// right, each compound part's own parts before the next part: the order of reading, in
+    /// which variables are bound and the first mismatch or `Bail` is met. By recursion over
+    /// the pattern, which is at most [`MAX_INSTANCE_DEPTH`] deep (no work list to fill).
+    fn match_parts(&mut self, parts: &'a [Arg], args: &'a [Term]) -> Result<bool, Halt> {
+        for (p, f) in parts.iter().zip(args) {
             match (p, f) {
                 (_, Term::Var(_)) => return Err(Halt::Bail),
                 (Arg::Anon, f) => {
@@ -474,8 +481,9 @@ impl<'a> Run<'a, '_> {
                     if *name != fc.name || parts.len() != fc.args.len() {
                         return Ok(false);
                     }
-                    // Reversed, so that the leftmost argument is matched first.
-                    work.extend(parts.iter().zip(fc.args.iter()).rev());
+                    if !self.match_parts(parts, &fc.args)? {
+                        return Ok(false);
+                    }
                 }
                 (Arg::Const(Term::Float(_)), _) | (_, Term::Float(_)) => return Err(Halt::Bail),
                 (Arg::Const(p), f) => {
@@ -520,7 +528,12 @@ fn same(a: Val<'_>, b: Val<'_>) -> Option<bool> {
                 _ => Some(false),
             }
         }
-        (Val::T(a), Val::T(b)) => (a, b),
+        // Atomic values are compared at once (the walk below would do the same).
+        (Val::T(a @ Term::Compound(_)), Val::T(b @ Term::Compound(_))) => (a, b),
+        (Val::T(Term::Var(_) | Term::Float(_)), _) | (_, Val::T(Term::Var(_) | Term::Float(_))) => {
+            return None
+        }
+        (Val::T(a), Val::T(b)) => return Some(a == b),
     };
     let mut work: SmallVec<[(&Term, &Term); 8]> = smallvec![(a, b)];
     while let Some((a, b)) = work.pop() {
