@@ -229,14 +229,24 @@ impl Core {
                     if f.next < f.order.len() {
                         let ri = f.order[f.next] as usize;
                         f.next += 1;
-                        let (b, s) = (f.block, f.subst.clone());
+                        let b = f.block;
                         let rule = &block.rules[ri];
                         if self.why.is_some() {
                             self.why_evaluating(prog, stack, b, ri);
                         }
+                        // The module's substitution is lent to the evaluation, not cloned
+                        // (`stack` is not `self`'s).
+                        let Some(Frame::Module(f)) = stack.last() else {
+                            continue;
+                        };
+                        // Passed over without an evaluation: no answers to make or drop.
+                        if self.rule_inapplicable(rule, &f.subst) {
+                            quiet = true;
+                            continue;
+                        }
                         // Kept goal answers are read and made only while `goal why` is off.
                         self.ms.goal_memo.get_mut().live = self.why.is_none();
-                        let answers = self.rule_answers(rule, &s, &prog.file);
+                        let answers = self.rule_answers(rule, &f.subst, &prog.file);
                         self.ms.goal_memo.get_mut().live = false;
                         let answers =
                             answers.map_err(|e| self.error(prog, Some((b, ri, rule.line)), e))?;

@@ -1,7 +1,7 @@
 //! Rule kinds: computing the answers a rule body runs for (`if`: shuffled, one acting answer;
 //! `forall`: all answers computed up front; `listall`: one answer binding the list).
 
-use super::condition::{evaluate, first_lookup_fails, show_subst, CondCtx};
+use super::condition::{evaluate, first_lookup_fails, show_subst, CondCtx, Found};
 use super::cycle::Core;
 use super::error::Fault;
 use super::goals::Goal;
@@ -27,19 +27,27 @@ pub type Answers = SmallVec<[Answer; 1]>;
 pub const IF_ANSWERS: usize = 1_000;
 
 impl Core {
-    /// The answers the rule's body runs for, in the order to try them (empty: not applicable);
-    /// `file` is the program file, named in warnings.
+    /// True (and the evaluation recorded, with no answers) when the rule provably has no
+    /// answer under `base` without running its condition (exactly: see `first_lookup_fails`);
+    /// else [`Core::rule_answers`] evaluates it.
+    #[inline]
+    pub fn rule_inapplicable(&mut self, rule: &RuleDef, base: &Subst) -> bool {
+        if self.why.is_none() && first_lookup_fails(&self.ms, &rule.cond, base) {
+            self.evaluated(rule, 0);
+            return true;
+        }
+        false
+    }
+
+    /// The answers the rule's body runs for, in the order to try them (empty: not applicable),
+    /// of a rule [`Core::rule_inapplicable`] did not rule out; `file` is the program file,
+    /// named in warnings.
     pub fn rule_answers(
         &mut self,
         rule: &RuleDef,
         base: &Subst,
         file: &str,
     ) -> Result<Answers, Fault> {
-        if self.why.is_none() && first_lookup_fails(&self.ms, &rule.cond, base) {
-            // Inapplicable without running the condition (exactly: see the function).
-            self.evaluated(rule, 0);
-            return Ok(Answers::new());
-        }
         let cap = match rule.kind {
             RuleKind::If => IF_ANSWERS,
             RuleKind::Forall | RuleKind::Listall(_) => usize::MAX,
@@ -81,14 +89,7 @@ impl Core {
                 self.why_condition(&rule.cond, &e);
             }
             cut = e.cut;
-            answers = e
-                .answers
-                .into_iter()
-                .map(|subst| Answer {
-                    subst,
-                    goals: Vec::new(),
-                })
-                .collect();
+            answers = answers_of(e.answers);
         }
         if cut {
             self.warn_truncated(rule, file);
@@ -145,26 +146,61 @@ impl Core {
     }
 
     /// Records that a rule's condition was evaluated, with its number of answers.
-    #[inline]
+    #[inline(always)]
     fn evaluated(&mut self, rule: &RuleDef, answers: usize) {
+        // The level check inline, the recording out of line: most runs do not trace rules.
         if self.level >= TraceLevel::Rules {
-            self.event(Event::RuleEvaluated {
-                rule: rule.label.to_string(),
-                answers,
-            });
+            self.record_evaluated(rule, answers);
         }
     }
 
+    /// [`Core::evaluated`]'s event.
+    #[cold]
+    #[inline(never)]
+    fn record_evaluated(&mut self, rule: &RuleDef, answers: usize) {
+        self.event(Event::RuleEvaluated {
+            rule: rule.label.to_string(),
+            answers,
+        });
+    }
+
     /// Records that a rule's body runs for an answer.
+    #[inline(always)]
     pub fn fired(&mut self, rule: &RuleDef, s: &Subst) {
-        if self.level < TraceLevel::Rules {
-            return;
+        if self.level >= TraceLevel::Rules {
+            self.record_fired(rule, s);
         }
+    }
+
+    /// [`Core::fired`]'s event.
+    #[cold]
+    #[inline(never)]
+    fn record_fired(&mut self, rule: &RuleDef, s: &Subst) {
         self.event(Event::RuleFired {
             rule: rule.label.to_string(),
             bindings: show_subst(s),
         });
     }
+}
+
+/// The answers a rule's body runs for from its condition's answers (no goals: no focus=select).
+fn answers_of(mut found: Found) -> Answers {
+    // Mostly one answer: moved over without an iterator over the inline array.
+    if found.len() == 1 {
+        if let Some(subst) = found.pop() {
+            return smallvec![Answer {
+                subst,
+                goals: Vec::new(),
+            }];
+        }
+    }
+    found
+        .into_iter()
+        .map(|subst| Answer {
+            subst,
+            goals: Vec::new(),
+        })
+        .collect()
 }
 
 /// The variables of a rule's condition not bound by `base`, in order of occurrence.

@@ -41,8 +41,12 @@ const MAX_ENTRIES: usize = 8;
 
 impl GoalMemo {
     /// Forgets every entry (the state may change next).
+    #[inline]
     pub fn clear(&mut self) {
-        self.entries.clear();
+        // Mostly nothing was kept: a length check instead of a clear each loop step.
+        if !self.entries.is_empty() {
+            self.entries.clear();
+        }
     }
 
     /// The kept answers of `op` `query` on the top-level (`top_level`) or current goal base.
