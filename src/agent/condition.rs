@@ -449,7 +449,8 @@ fn literal(
             *cut |= stopped;
             let mut found = found;
             distinct(&mut found);
-            raw.items = found;
+            // Returned at once: no empty answer set to replace and drop.
+            return Ok(finish_found(*negated, found));
         }
         (MentalOp::Goal | MentalOp::AGoal | MentalOp::GoalA, None) => {
             // The query's instance is matched in place when `theta` allows (no copy made).
@@ -538,9 +539,15 @@ fn literal(
 /// A literal's answers from the answers of its query: for a negated literal, one empty answer
 /// when the query had none, else none.
 fn finish(negated: bool, raw: AnswerSet) -> Found {
+    finish_found(negated, raw.items)
+}
+
+/// [`finish`] of the distinct answers `found` of a query.
+#[inline]
+fn finish_found(negated: bool, found: Found) -> Found {
     match negated {
-        false => raw.items,
-        true if raw.items.is_empty() => smallvec![Subst::new()],
+        false => found,
+        true if found.is_empty() => smallvec![Subst::new()],
         true => Found::new(),
     }
 }
@@ -564,14 +571,22 @@ fn planned<'a>(cx: &CondCtx<'a>, lit: &'a Lit) -> Option<super::conjunction::Bat
 
 /// `found` without repeated answers (a plan, as the engine, reports an answer once for each
 /// way it was found).
+#[inline(always)]
 fn distinct(found: &mut Found) {
+    // The length check inline: mostly a query has one answer or none.
     if found.len() > 1 {
-        let mut set = AnswerSet::default();
-        for a in found.drain(..) {
-            set.push(a);
-        }
-        *found = set.items;
+        distinct_many(found);
     }
+}
+
+/// [`distinct`] of two or more answers.
+#[inline(never)]
+fn distinct_many(found: &mut Found) {
+    let mut set = AnswerSet::default();
+    for a in found.drain(..) {
+        set.push(a);
+    }
+    *found = set.items;
 }
 
 /// The answers of an `a-goal` (`believed` false) or `goal-a` (`believed` true) query over

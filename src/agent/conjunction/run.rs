@@ -139,11 +139,11 @@ impl<'a> Run<'a, '_> {
                 false => self.solve(i + 1),
             },
             Step::Is(lhs, e) => {
-                let v = self.eval(e)?;
+                let v = self.value(e)?;
                 self.bind_int(lhs, v, i)
             }
             Step::Compare(op, a, b) => {
-                let (a, b) = (self.eval(a)?, self.eval(b)?);
+                let (a, b) = (self.value(a)?, self.value(b)?);
                 let holds = match op {
                     Cmp::Lt => a < b,
                     Cmp::Gt => a > b,
@@ -280,6 +280,17 @@ impl<'a> Run<'a, '_> {
                 },
             },
             _ => Err(Halt::Bail),
+        }
+    }
+
+    /// [`Run::eval`] with a leaf (an integer, a variable) read in place: most sides of a
+    /// comparison or `is/2` are one.
+    #[inline(always)]
+    fn value(&self, e: &Expr) -> Result<i64, Halt> {
+        match e {
+            Expr::Int(i) => Ok(*i),
+            Expr::Reg(k) => self.vals[*k].and_then(Val::int).ok_or(Halt::Bail),
+            _ => self.eval(e),
         }
     }
 
