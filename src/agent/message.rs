@@ -289,13 +289,7 @@ impl Core {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn term(text: &str) -> Term {
-        crate::syntax::prolog::Reader::new("t")
-            .term(text, 0)
-            .expect("term")
-            .term
-    }
+    use crate::agent::mailbox::tests::term;
 
     /// A substitution binding each `(variable, term text)`.
     fn subst(pairs: &[(&str, &str)]) -> Subst {
