@@ -370,10 +370,11 @@ pub fn received(sender: &Term, content: &Term) -> Term {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    fn term(text: &str) -> Term {
+    /// The term written in `text` (for the agent's unit tests).
+    pub(in crate::agent) fn term(text: &str) -> Term {
         crate::syntax::prolog::Reader::new("t")
             .term(text, 0)
             .expect("term")

@@ -60,6 +60,76 @@ pub fn agent_names(ts: &[Term], s: &Subst) -> Result<Names, Fault> {
     Ok(names)
 }
 
+/// Pattern nesting up to which [`atomic_instance`] builds a message's content.
+const CONTENT_DEPTH: u32 = 32;
+
+/// The content a send of `content` with `mood` sends under `s`: instantiated, checked ground
+/// (but for a question) and valid in the content language (`clamr::content::validate`), and
+/// wrapped in its mood.
+fn message_content(mood: Mood, content: &Term, s: &Subst) -> Result<Term, Fault> {
+    let mut suspect = false;
+    let (c, checked) = match atomic_instance(s, content, CONTENT_DEPTH, &mut suspect) {
+        // Ground by construction; and `validate` can only reject a message at a compound whose
+        // functor `may_reject` names: the instance's compounds are the pattern's own (the
+        // mood's wrapper is none of them), so without a suspect one it passes as it is.
+        Some((c, _)) => (c, !suspect),
+        None => {
+            let c = s.apply(content);
+            if mood != Mood::Interrogative && !c.is_ground() {
+                return Err(Fault {
+                    message: format!("message content {c} is not ground"),
+                    binding: Some(show_subst(s)),
+                });
+            }
+            (c, false)
+        }
+    };
+    let wrapped = wrap_mood(mood, c);
+    if !checked {
+        crate::clamr::content::validate(&wrapped).map_err(|e| Fault {
+            message: format!("message content: {e}"),
+            binding: Some(show_subst(s)),
+        })?;
+    }
+    Ok(wrapped)
+}
+
+/// `t` under `s` with whether it differs from `t`, when each variable in it is bound to an
+/// atomic term and it nests at most `depth` deep (the usual message: `token(T, R)`); `None`
+/// otherwise (the caller applies `s` the general way). Sets `suspect` on meeting a compound
+/// that content validation may reject. Unchanged arguments are shared, as `Subst::apply` does.
+fn atomic_instance(s: &Subst, t: &Term, depth: u32, suspect: &mut bool) -> Option<(Term, bool)> {
+    match t {
+        Term::Var(_) => match s.walk(t) {
+            Term::Var(_) | Term::Compound(_) => None,
+            v => Some((v.clone(), true)),
+        },
+        Term::Compound(_) if depth == 0 => None,
+        Term::Compound(c) => {
+            *suspect |= crate::clamr::content::may_reject(c.name);
+            let mut args: Option<Vec<Term>> = None;
+            for (i, a) in c.args.iter().enumerate() {
+                let (x, changed) = atomic_instance(s, a, depth - 1, suspect)?;
+                match args.as_mut() {
+                    Some(v) => v.push(x),
+                    None if !changed => {}
+                    None => {
+                        let mut v = Vec::with_capacity(c.args.len());
+                        v.extend(c.args[..i].iter().cloned());
+                        v.push(x);
+                        args = Some(v);
+                    }
+                }
+            }
+            Some(match args {
+                Some(v) => (Term::compound(c.name, v), true),
+                None => (t.clone(), false),
+            })
+        }
+        other => Some((other.clone(), false)),
+    }
+}
+
 impl Core {
     /// The receiver names of a selector under `s`.
     fn receivers(&self, to: &Receivers, s: &Subst) -> Result<Names, Fault> {
@@ -87,18 +157,7 @@ impl Core {
         channels: bool,
         s: &Subst,
     ) -> Result<Outcome, Fault> {
-        let c = s.apply(content);
-        if mood != Mood::Interrogative && !c.is_ground() {
-            return Err(Fault {
-                message: format!("message content {c} is not ground"),
-                binding: Some(show_subst(s)),
-            });
-        }
-        let wrapped = wrap_mood(mood, c);
-        crate::clamr::content::validate(&wrapped).map_err(|e| Fault {
-            message: format!("message content: {e}"),
-            binding: Some(show_subst(s)),
-        })?;
+        let wrapped = message_content(mood, content, s)?;
         let record = self.level >= TraceLevel::Changes;
         let mut ev = Vec::new();
         for r in self.receivers(to, s)? {
@@ -224,5 +283,92 @@ impl Core {
             self.changes(ev);
         }
         Ok(!messages.is_empty())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::agent::mailbox::tests::term;
+
+    /// A substitution binding each `(variable, term text)`.
+    fn subst(pairs: &[(&str, &str)]) -> Subst {
+        let mut s = Subst::new();
+        for (v, t) in pairs {
+            s.bind(Sym::intern(v), term(t));
+        }
+        s
+    }
+
+    /// The content the general way: apply, check ground (but for a question), wrap, validate.
+    fn general(mood: Mood, content: &Term, s: &Subst) -> Result<Term, String> {
+        let c = s.apply(content);
+        if mood != Mood::Interrogative && !c.is_ground() {
+            return Err(format!("message content {c} is not ground"));
+        }
+        let wrapped = wrap_mood(mood, c);
+        crate::clamr::content::validate(&wrapped).map_err(|e| format!("message content: {e}"))?;
+        Ok(wrapped)
+    }
+
+    #[test]
+    fn message_content_is_the_general_instance_checked_the_same_way() {
+        let s = subst(&[
+            ("T", "1"),
+            ("R", "4"),
+            ("A", "foo"),
+            ("U", "T"),
+            ("G", "greater(foo)"),
+            ("L", "[a, b]"),
+            ("N", "-3"),
+        ]);
+        let moods = [Mood::Declarative, Mood::Imperative, Mood::Interrogative];
+        let cases = [
+            "token(T, R)",
+            "token(U, f(R, [A]))",
+            "p",
+            // Forms validation rejects, with atomic values bound inside them.
+            "greater(A)",
+            "f(g(range(R, T)))",
+            "when(go, N)",
+            "ack(A, T)",
+            "ack(accept, T)",
+            // Values that are compounds or unbound: the general way.
+            "f(G)",
+            "f(L)",
+            "token(T, X)",
+            "X",
+        ];
+        for text in cases {
+            for mood in moods {
+                let got = message_content(mood, &term(text), &s).map_err(|f| f.message);
+                let want = general(mood, &term(text), &s);
+                assert_eq!(got, want, "{text} as {mood:?}");
+            }
+        }
+        // Some of them pass and some fail each way.
+        let passes = |text: &str| message_content(Mood::Declarative, &term(text), &s).is_ok();
+        assert!(passes("token(T, R)") && passes("ack(accept, T)"));
+        assert!(!passes("greater(A)") && !passes("ack(A, T)") && !passes("token(T, X)"));
+        assert!(!passes("f(g(range(R, T)))") && !passes("when(go, N)") && !passes("f(G)"));
+    }
+
+    #[test]
+    fn message_content_shares_what_the_substitution_leaves_alone() {
+        let s = subst(&[("T", "1")]);
+        let pattern = term("f(g(a), T, h(b))");
+        let got = message_content(Mood::Declarative, &pattern, &s).expect("valid");
+        assert_eq!(got, term("f(g(a), 1, h(b))"));
+        let shared = |k: usize| match (&got.args()[k], &pattern.args()[k]) {
+            (Term::Compound(a), Term::Compound(b)) => std::sync::Arc::ptr_eq(a, b),
+            _ => false,
+        };
+        assert!(shared(0) && shared(2));
+        // Nothing bound in it: the pattern itself.
+        let ground = term("f(g(a))");
+        match (message_content(Mood::Declarative, &ground, &s), &ground) {
+            (Ok(Term::Compound(a)), Term::Compound(b)) => assert!(std::sync::Arc::ptr_eq(&a, b)),
+            other => panic!("{other:?}"),
+        }
     }
 }

@@ -68,6 +68,13 @@ fn checked(f: Sym) -> bool {
         .contains(&f)
 }
 
+/// True when [`validate`] may reject a compound with functor name `f`: one of the forms it
+/// checks, or `ack` (checked at the top). A message with no such compound passes unlooked-at.
+pub fn may_reject(f: Sym) -> bool {
+    static ACK: OnceLock<Sym> = OnceLock::new();
+    checked(f) || f == *ACK.get_or_init(|| Sym::intern("ack"))
+}
+
 /// Checks one node; `Err` says what is wrong with it and how to write it.
 fn check_node(t: &Term) -> Result<(), String> {
     let Some((f, n)) = t.functor().filter(|(f, _)| checked(*f)) else {

@@ -31,6 +31,13 @@ use std::sync::atomic::Ordering;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+/// Most emptied outgoing-message buffers the run loop keeps for inboxes.
+const SPARE_BUFFERS: usize = 64;
+
+/// Most messages a kept buffer may have room for: a larger one (a broadcast's) is freed, so
+/// that the inboxes' buffers stay small.
+const REUSED_ROOM: usize = 16;
+
 /// How often the resident memory is checked against the cap.
 const MEMORY_CHECK_EVERY: Duration = Duration::from_millis(20);
 
@@ -193,6 +200,9 @@ impl<'a> Setup<'a> {
         let mut jobs: Vec<Job> = Vec::new();
         let mut outputs: Vec<(usize, CycleOutput)> = Vec::new();
         let mut sent: Vec<Message> = Vec::new();
+        // The agents' emptied outgoing-message buffers, given to inboxes that have none: a
+        // message passed on then allocates no inbox.
+        let mut buffers: Vec<Vec<Message>> = Vec::new();
         let end = loop {
             if let Some(reason) = self.interrupted_or_over(start, &mut memory_checked, obs) {
                 break reason;
@@ -305,7 +315,12 @@ impl<'a> Setup<'a> {
                     }
                 }
                 s.stats.messages_sent += out.messages.len() as u64;
-                sent.extend(out.messages);
+                let mut outgoing = out.messages;
+                sent.append(&mut outgoing);
+                if (1..=REUSED_ROOM).contains(&outgoing.capacity()) && buffers.len() < SPARE_BUFFERS
+                {
+                    buffers.push(outgoing);
+                }
                 match out.stopped {
                     Some(StopReason::Error(e)) => {
                         s.stats.stopped = true;
@@ -362,6 +377,9 @@ impl<'a> Setup<'a> {
                     Some(j) if !full => {
                         let s = &mut self.slots[j];
                         if !s.stats.stopped {
+                            if s.inbox.capacity() == 0 {
+                                s.inbox = buffers.pop().unwrap_or_default();
+                            }
                             s.inbox.push(m);
                             mark(&mut self.ready, s, j);
                         }
