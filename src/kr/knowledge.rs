@@ -175,7 +175,7 @@ pub fn file_io_reason(name: &str, arity: u32) -> Option<&'static str> {
 impl Pred {
     /// The clause indices that can match a goal whose first argument has key `k` (and,
     /// when the first is unbound, whose second argument has key `k2`). Clause order is kept.
-    #[inline]
+    #[inline(always)]
     pub fn candidates(&self, k: Option<Key>, k2: Option<Key>) -> &[u32] {
         match (k, k2) {
             (Some(k), _) if !self.by_key.is_empty() => match self.by_key.get(&k) {

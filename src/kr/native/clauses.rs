@@ -251,7 +251,27 @@ impl<'a, 'm> Solver<'a, 'm> {
             );
         }
         let b = self.m.cps.len() as u32;
-        self.try_clauses(goal, args, r, key, 0, b, false, next, depth)
+        let list = self.candidates(pred, key, args);
+        let i = Self::skip(pred, list, 0, key);
+        if i < list.len() && Self::skip(pred, list, i + 1, key) == list.len() {
+            // One candidate: what `try_clauses` does for it (no choicepoint, and a failed head
+            // leaves its bindings to the backtracking that follows), without its loop.
+            return Ok(self.try_clause(pred, list[i], args, next, b));
+        }
+        self.try_clauses(goal, args, r, key, i as u32, b, false, next, depth)
+    }
+
+    /// The candidate clauses of `pred` for a call with first-argument key `key` on the
+    /// arguments at `args`. The second-argument key is read from the goal on every entry:
+    /// backtracking restores the bindings of the call, so the list is the same each time.
+    #[inline(always)]
+    fn candidates(&self, pred: &'a Pred, key: Option<Key>, args: Args) -> &'a [u32] {
+        let key2 = if key.is_none() && pred.arity >= 2 && pred.has_second_index() {
+            Key::of_cell(&self.m.st, Self::arg(self.m, args, 1))
+        } else {
+            None
+        };
+        pred.candidates(key, key2)
     }
 
     /// The first clause index at or after `i` whose first-argument key can match `key`.
@@ -284,14 +304,7 @@ impl<'a, 'm> Solver<'a, 'm> {
         depth: u32,
     ) -> KrResult<bool> {
         let pred = self.pred(r);
-        // The second-argument key is read from the goal on every entry: backtracking restores
-        // the bindings of the call, so the candidate list is the same each time.
-        let key2 = if key.is_none() && pred.arity >= 2 && pred.has_second_index() {
-            Key::of_cell(&self.m.st, Self::arg(self.m, args, 1))
-        } else {
-            None
-        };
-        let list = pred.candidates(key, key2);
+        let list = self.candidates(pred, key, args);
         let mut i = Self::skip(pred, list, pos as usize, key);
         loop {
             if i >= list.len() {
@@ -326,13 +339,13 @@ impl<'a, 'm> Solver<'a, 'm> {
                 self.m.cps.truncate(b as usize);
                 has_choice = false;
             }
-            let (mark, fm) = (self.m.st.mark(), self.m.frames.len());
-            let ok = self.try_clause(pred, list[i], args, next, b);
             // After the last candidate, a failed head leaves its bindings to the backtracking
-            // that follows (it restores an older choicepoint).
-            if ok || !has_choice {
+            // that follows (it restores an older choicepoint): no mark to rewind to.
+            let saved = has_choice.then(|| (self.m.st.mark(), self.m.frames.len()));
+            let ok = self.try_clause(pred, list[i], args, next, b);
+            let Some((mark, fm)) = saved.filter(|_| !ok) else {
                 return Ok(ok);
-            }
+            };
             self.m.st.rewind(mark);
             self.m.frames.truncate(fm);
             i = j;
@@ -342,6 +355,7 @@ impl<'a, 'm> Solver<'a, 'm> {
     /// Matches clause `ci`'s head against the arguments at `args` and schedules
     /// its body: the first goal as the next [`Direct`] call when it calls clauses, the others
     /// as frames.
+    #[inline(always)]
     pub(crate) fn try_clause(
         &mut self,
         pred: &'a Pred,
@@ -375,7 +389,9 @@ impl<'a, 'm> Solver<'a, 'm> {
             m.frames[next as usize].depth
         };
         let framed = usize::from(direct.is_some());
-        m.frames.reserve(cl.body.len());
+        if cl.body.len() > framed {
+            m.frames.reserve(cl.body.len());
+        }
         for (g, pred) in cl.body.iter().zip(&cl.preds).skip(framed).rev() {
             let c = cl.code.build(&mut m.st, *g, &mut m.slots);
             d += 1;
@@ -400,7 +416,7 @@ impl<'a, 'm> Solver<'a, 'm> {
 /// Places the arguments of the compiled goal `goal` for a call: in the argument registers
 /// when none is a structure (fresh variables are made in the order a block copy would make
 /// them), else built as a block on the heap.
-#[inline]
+#[inline(always)]
 fn place_args(m: &mut Machine, code: &Code, goal: Cell) -> Args {
     let Some(cells) = code.flat_args(goal).filter(|c| c.len() <= MAX_REGS) else {
         return Args::Heap(code.build_args(&mut m.st, goal, &mut m.slots));

@@ -290,7 +290,7 @@ impl Code {
     }
 
     /// Like [`Code::unify`], with the common cases (a new variable, a constant) inline.
-    #[inline]
+    #[inline(always)]
     pub fn unify_arg(&self, store: &mut Store, code: Cell, heap: Cell, slots: &mut [Cell]) -> bool {
         match code {
             Cell::Ref(n) if matches!(slots[n as usize], Cell::Ref(u32::MAX)) => {
