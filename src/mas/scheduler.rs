@@ -1,11 +1,13 @@
 //! The worker pool: each thread owns a contiguous range of the agents (the calling thread
 //! included) and runs their cycles of a shared round, claiming them a few at a time; a thread
-//! done with its own part claims what is left of the others'. The outputs are returned in
+//! done with its own part claims what is left of the parts of threads that have not come to
+//! the round yet. The outputs are returned in
 //! agent-index order, so the result never depends on thread timing. Owning keeps an agent's
 //! state (its engine heap, fact base, mailbox) in the cache of the core that ran it last, and
 //! a token ring's messages mostly stay within one thread's range; claiming from the others
 //! keeps a round moving when the machine is busy: a worker thread that waits for a core only
-//! takes work once it runs, and until then the others take its part. Rounds with very few cycles
+//! takes work once it runs, and until then the others take its part; once it has come, its
+//! part is its own. Rounds with very few cycles
 //! (a token ring moves one agent per round) run entirely on the calling thread: waking a
 //! thread costs more than such a cycle. Between rounds both sides wait by spinning briefly
 //! before they block: rounds are often shorter than putting a thread to sleep and waking it.
@@ -19,7 +21,7 @@ use crate::agent::{Agent, CycleOutput, Message};
 use crate::term::Term;
 use crossbeam_channel::{unbounded, Receiver, RecvError, Sender, TryRecvError};
 use std::cell::Cell;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
@@ -57,6 +59,8 @@ const CHUNK: usize = 4;
 struct Part {
     next: AtomicUsize,
     end: usize,
+    /// Its owner has come to the round: from then on only the owner claims its jobs.
+    started: AtomicBool,
 }
 
 /// A round shared between threads: its cycles (in agent-index order), each thread's part of
@@ -108,6 +112,7 @@ fn parts(jobs: &[Job], agents: usize, threads: usize) -> Vec<Part> {
             let p = Part {
                 next: AtomicUsize::new(start),
                 end,
+                started: AtomicBool::new(false),
             };
             start = end;
             p
@@ -158,8 +163,18 @@ impl Round {
         let mut error = None;
         let mut count = 0;
         let n = self.parts.len();
-        for part in (0..n).map(|k| &self.parts[(me + k) % n]) {
+        if let Some(own) = self.parts.get(me) {
+            own.started.store(true, Ordering::Relaxed);
+        }
+        for (k, part) in (0..n).map(|k| (k, &self.parts[(me + k) % n])) {
             loop {
+                // Another thread's part is left to it once it has come: running an agent on
+                // another core moves its state (fact base, engine heap, mailbox) there and
+                // back, which costs more than the cycle. Only the part of a thread that has
+                // not come yet (waiting for a core) is taken.
+                if k > 0 && part.started.load(Ordering::Relaxed) {
+                    break;
+                }
                 let from = part.next.fetch_add(CHUNK, Ordering::Relaxed);
                 if from >= part.end {
                     break;
@@ -583,6 +598,38 @@ mod tests {
         // A thread that comes late finds nothing left and changes nothing.
         round.work(&pool.agents, 2);
         assert_eq!(round.finished.load(Ordering::Relaxed), n);
+    }
+
+    #[test]
+    fn a_thread_leaves_the_part_of_a_thread_that_has_come_to_its_owner() {
+        let n = 8;
+        let alone = Pool::new(agents(n), 1).expect("pool");
+        let pool = Pool::new(agents(n), 1).expect("pool");
+        let jobs = || {
+            (0..n)
+                .map(|i| (i, Vec::new(), Vec::new()))
+                .collect::<Vec<Job>>()
+        };
+        // Split for two threads (agents 0-3 and 4-7); thread 1 has come to the round.
+        let round = Round::new(&mut jobs(), None, n, 2);
+        round.parts[1].started.store(true, Ordering::Relaxed);
+        round.work(&pool.agents, 0);
+        assert_eq!(
+            round.finished.load(Ordering::Relaxed),
+            4,
+            "thread 0 ran only its own"
+        );
+        assert_eq!(
+            round.parts[1].next.load(Ordering::Relaxed),
+            4,
+            "part 1 untouched"
+        );
+        round.work(&pool.agents, 1);
+        let mut b = Vec::new();
+        round.wait(&mut b).expect("round");
+        let mut a = Vec::new();
+        step(&alone.agents, None, jobs(), &mut a).expect("round");
+        assert_eq!(printed(b), printed(a));
     }
 
     #[test]
