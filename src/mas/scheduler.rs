@@ -250,6 +250,11 @@ struct Worker {
 /// Rounds between two tries of the way of running rounds that is currently the slower one.
 const EXPLORE_EVERY: u32 = 128;
 
+/// Shared rounds in a row that make one try of sharing: the first one pays for waking the
+/// workers, which have gone to sleep during the rounds run alone, so a try of one round
+/// would only ever measure that (and sharing would never be taken again).
+const TRY_ROUNDS: u32 = 8;
+
 /// Weight of the newest round in the running mean of the time per cycle.
 const NEWEST: f64 = 0.1;
 
@@ -261,23 +266,44 @@ struct Costs {
     shared: Cell<f64>,
     /// Rounds that could be shared since the slower way was last tried.
     since_try: Cell<u32>,
+    /// Shared rounds still to come in the current try of sharing.
+    trying: Cell<u32>,
+    /// The last round taken into account was shared (the workers are awake).
+    warm: Cell<bool>,
 }
 
 impl Costs {
     /// True when the next round of enough cycles should be shared.
     fn share(&self) -> bool {
+        let left = self.trying.get();
+        if left > 0 {
+            self.trying.set(left - 1);
+            return true;
+        }
         let (i, s) = (self.inline.get(), self.shared.get());
-        if i == 0.0 || s == 0.0 {
-            // Measure both ways first.
-            return s == 0.0 && i > 0.0;
+        if i == 0.0 {
+            // Measure running alone first, then sharing.
+            return false;
         }
         let n = self.since_try.get() + 1;
-        self.since_try.set(n % EXPLORE_EVERY);
-        (s < i) != (n == EXPLORE_EVERY)
+        let explore = s == 0.0 || n == EXPLORE_EVERY;
+        self.since_try.set(if explore { 0 } else { n });
+        let faster = s != 0.0 && s < i;
+        if explore && !faster {
+            self.trying.set(TRY_ROUNDS - 1);
+        }
+        faster != explore
     }
 
-    /// Takes the time `took` of a round of `cycles` cycles run one way into its mean.
+    /// Takes the time `took` of a round of `cycles` cycles run one way into its mean; a
+    /// shared round right after rounds run alone is left out: it paid for waking the
+    /// workers, which the next shared rounds do not.
     fn record(&self, shared: bool, took: Duration, cycles: usize) {
+        let woke = shared && !self.warm.get();
+        self.warm.set(shared);
+        if woke {
+            return;
+        }
         let per = took.as_nanos() as f64 / cycles.max(1) as f64;
         let mean = if shared { &self.shared } else { &self.inline };
         let old = mean.get();
@@ -650,19 +676,42 @@ mod tests {
     #[test]
     fn rounds_are_shared_only_while_sharing_is_faster() {
         let c = Costs::default();
-        // Both ways are measured first: one round alone, then one shared.
+        // Running alone is measured first.
         assert!(!c.share());
         c.record(false, Duration::from_micros(100), 10);
-        assert!(c.share());
-        c.record(true, Duration::from_micros(400), 10);
-        // Sharing is slower: rounds run alone, but sharing is tried again now and then.
-        let shared: Vec<u32> = (1..=2 * EXPLORE_EVERY).filter(|_| c.share()).collect();
-        assert_eq!(shared.len(), 2);
+        // Then sharing, in a try of several rounds in a row: waking the workers makes the
+        // first one slow, and it is not measured.
+        for k in 0..TRY_ROUNDS {
+            assert!(c.share(), "round {k} of the try");
+            let took = if k == 0 { 4000 } else { 400 };
+            c.record(true, Duration::from_micros(took), 10);
+        }
+        assert_eq!(c.shared.get(), 40_000.0);
+        // Sharing is slower: rounds run alone, but sharing is tried again now and then, again
+        // for several rounds in a row.
+        let calls = EXPLORE_EVERY + TRY_ROUNDS - 1;
+        let shared: Vec<u32> = (1..=calls).filter(|_| c.share()).collect();
+        let tried: Vec<u32> = (EXPLORE_EVERY..=calls).collect();
+        assert_eq!(shared, tried);
         // Once sharing has become the faster way, it is the one taken.
         for _ in 0..40 {
             c.record(true, Duration::from_micros(20), 10);
         }
         let alone = (1..=EXPLORE_EVERY).filter(|_| !c.share()).count();
         assert_eq!(alone, 1);
+    }
+
+    #[test]
+    fn a_shared_round_after_rounds_alone_is_not_measured() {
+        let c = Costs::default();
+        c.record(false, Duration::from_micros(100), 10);
+        // It woke the workers: left out.
+        c.record(true, Duration::from_millis(10), 10);
+        assert_eq!(c.shared.get(), 0.0);
+        c.record(true, Duration::from_micros(50), 10);
+        assert_eq!(c.shared.get(), 5_000.0);
+        c.record(false, Duration::from_micros(100), 10);
+        c.record(true, Duration::from_millis(10), 10);
+        assert_eq!(c.shared.get(), 5_000.0);
     }
 }
