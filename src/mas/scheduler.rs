@@ -603,24 +603,29 @@ mod tests {
         assert!(b.windows(2).all(|w| w[0].1 == w[1].0), "{b:?}");
     }
 
+    /// One job without input for each of agents `0..n`.
+    fn every_job(n: usize) -> Vec<Job> {
+        (0..n).map(|i| (i, Vec::new(), Vec::new())).collect()
+    }
+
+    /// What the cycles of `jobs` print on `n` fresh agents run on one thread.
+    fn printed_alone(n: usize, jobs: Vec<Job>) -> Vec<(usize, Vec<String>)> {
+        let alone = Pool::new(agents(n), 1).expect("pool");
+        let mut a = Vec::new();
+        step(&alone.agents, None, jobs, &mut a).expect("round");
+        printed(a)
+    }
+
     #[test]
     fn a_thread_done_with_its_part_runs_the_parts_of_threads_that_never_came() {
         let n = 9;
-        let alone = Pool::new(agents(n), 1).expect("pool");
         let pool = Pool::new(agents(n), 1).expect("pool");
-        let jobs = || {
-            (0..n)
-                .map(|i| (i, Vec::new(), Vec::new()))
-                .collect::<Vec<Job>>()
-        };
         // A round split for three threads, of which only the calling thread (0) ever runs.
-        let round = Round::new(&mut jobs(), None, n, 3);
+        let round = Round::new(&mut every_job(n), None, n, 3);
         round.work(&pool.agents, 0);
         let mut b = Vec::new();
         round.wait(&mut b).expect("round");
-        let mut a = Vec::new();
-        step(&alone.agents, None, jobs(), &mut a).expect("round");
-        assert_eq!(printed(b), printed(a));
+        assert_eq!(printed(b), printed_alone(n, every_job(n)));
         // A thread that comes late finds nothing left and changes nothing.
         round.work(&pool.agents, 2);
         assert_eq!(round.finished.load(Ordering::Relaxed), n);
@@ -629,15 +634,9 @@ mod tests {
     #[test]
     fn a_thread_leaves_the_part_of_a_thread_that_has_come_to_its_owner() {
         let n = 8;
-        let alone = Pool::new(agents(n), 1).expect("pool");
         let pool = Pool::new(agents(n), 1).expect("pool");
-        let jobs = || {
-            (0..n)
-                .map(|i| (i, Vec::new(), Vec::new()))
-                .collect::<Vec<Job>>()
-        };
         // Split for two threads (agents 0-3 and 4-7); thread 1 has come to the round.
-        let round = Round::new(&mut jobs(), None, n, 2);
+        let round = Round::new(&mut every_job(n), None, n, 2);
         round.parts[1].started.store(true, Ordering::Relaxed);
         round.work(&pool.agents, 0);
         assert_eq!(
@@ -653,9 +652,7 @@ mod tests {
         round.work(&pool.agents, 1);
         let mut b = Vec::new();
         round.wait(&mut b).expect("round");
-        let mut a = Vec::new();
-        step(&alone.agents, None, jobs(), &mut a).expect("round");
-        assert_eq!(printed(b), printed(a));
+        assert_eq!(printed(b), printed_alone(n, every_job(n)));
     }
 
     #[test]
