@@ -1,11 +1,13 @@
 //! The worker pool: each thread owns a contiguous range of the agents (the calling thread
 //! included) and runs their cycles of a shared round, claiming them a few at a time; a thread
-//! done with its own part claims what is left of the others'. The outputs are returned in
+//! done with its own part claims what is left of the parts of threads that have not come to
+//! the round yet. The outputs are returned in
 //! agent-index order, so the result never depends on thread timing. Owning keeps an agent's
 //! state (its engine heap, fact base, mailbox) in the cache of the core that ran it last, and
 //! a token ring's messages mostly stay within one thread's range; claiming from the others
 //! keeps a round moving when the machine is busy: a worker thread that waits for a core only
-//! takes work once it runs, and until then the others take its part. Rounds with very few cycles
+//! takes work once it runs, and until then the others take its part; once it has come, its
+//! part is its own. Rounds with very few cycles
 //! (a token ring moves one agent per round) run entirely on the calling thread: waking a
 //! thread costs more than such a cycle. Between rounds both sides wait by spinning briefly
 //! before they block: rounds are often shorter than putting a thread to sleep and waking it.
@@ -19,7 +21,7 @@ use crate::agent::{Agent, CycleOutput, Message};
 use crate::term::Term;
 use crossbeam_channel::{unbounded, Receiver, RecvError, Sender, TryRecvError};
 use std::cell::Cell;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
@@ -57,6 +59,8 @@ const CHUNK: usize = 4;
 struct Part {
     next: AtomicUsize,
     end: usize,
+    /// Its owner has come to the round: from then on only the owner claims its jobs.
+    started: AtomicBool,
 }
 
 /// A round shared between threads: its cycles (in agent-index order), each thread's part of
@@ -108,6 +112,7 @@ fn parts(jobs: &[Job], agents: usize, threads: usize) -> Vec<Part> {
             let p = Part {
                 next: AtomicUsize::new(start),
                 end,
+                started: AtomicBool::new(false),
             };
             start = end;
             p
@@ -158,8 +163,18 @@ impl Round {
         let mut error = None;
         let mut count = 0;
         let n = self.parts.len();
-        for part in (0..n).map(|k| &self.parts[(me + k) % n]) {
+        if let Some(own) = self.parts.get(me) {
+            own.started.store(true, Ordering::Relaxed);
+        }
+        for (k, part) in (0..n).map(|k| (k, &self.parts[(me + k) % n])) {
             loop {
+                // Another thread's part is left to it once it has come: running an agent on
+                // another core moves its state (fact base, engine heap, mailbox) there and
+                // back, which costs more than the cycle. Only the part of a thread that has
+                // not come yet (waiting for a core) is taken.
+                if k > 0 && part.started.load(Ordering::Relaxed) {
+                    break;
+                }
                 let from = part.next.fetch_add(CHUNK, Ordering::Relaxed);
                 if from >= part.end {
                     break;
@@ -235,6 +250,12 @@ struct Worker {
 /// Rounds between two tries of the way of running rounds that is currently the slower one.
 const EXPLORE_EVERY: u32 = 128;
 
+/// Rounds in a row that make one try of the slower way. The first round after a change of
+/// way is not measured: a shared one pays for waking the workers, asleep since the rounds run
+/// alone, and one run alone for fetching the state of the agents the workers ran from their
+/// cores' caches; a try of one round would only ever measure that.
+const TRY_ROUNDS: u32 = 8;
+
 /// Weight of the newest round in the running mean of the time per cycle.
 const NEWEST: f64 = 0.1;
 
@@ -246,23 +267,45 @@ struct Costs {
     shared: Cell<f64>,
     /// Rounds that could be shared since the slower way was last tried.
     since_try: Cell<u32>,
+    /// Rounds still to come in the current try.
+    trying: Cell<u32>,
+    /// The way being tried (true: shared).
+    trying_shared: Cell<bool>,
+    /// The way the last round ran (true: shared).
+    last: Cell<Option<bool>>,
 }
 
 impl Costs {
     /// True when the next round of enough cycles should be shared.
     fn share(&self) -> bool {
+        let left = self.trying.get();
+        if left > 0 {
+            self.trying.set(left - 1);
+            return self.trying_shared.get();
+        }
         let (i, s) = (self.inline.get(), self.shared.get());
-        if i == 0.0 || s == 0.0 {
-            // Measure both ways first.
-            return s == 0.0 && i > 0.0;
+        if i == 0.0 {
+            // Measure running alone first, then sharing.
+            return false;
         }
         let n = self.since_try.get() + 1;
-        self.since_try.set(n % EXPLORE_EVERY);
-        (s < i) != (n == EXPLORE_EVERY)
+        let explore = s == 0.0 || n == EXPLORE_EVERY;
+        self.since_try.set(if explore { 0 } else { n });
+        let faster = s != 0.0 && s < i;
+        if explore {
+            self.trying.set(TRY_ROUNDS - 1);
+            self.trying_shared.set(!faster);
+        }
+        faster != explore
     }
 
-    /// Takes the time `took` of a round of `cycles` cycles run one way into its mean.
+    /// Takes the time `took` of a round of `cycles` cycles run one way into its mean; the
+    /// first round after a change of way is left out (see [`TRY_ROUNDS`]).
     fn record(&self, shared: bool, took: Duration, cycles: usize) {
+        let changed = self.last.replace(Some(shared)).is_some_and(|l| l != shared);
+        if changed {
+            return;
+        }
         let per = took.as_nanos() as f64 / cycles.max(1) as f64;
         let mean = if shared { &self.shared } else { &self.inline };
         let old = mean.get();
@@ -279,6 +322,16 @@ pub struct Pool {
     agents: Agents,
     workers: Vec<Worker>,
     costs: Costs,
+    /// The last round that could have been shared, while its time is still running.
+    open: Cell<Option<Open>>,
+}
+
+/// A round whose time is taken when the next round that could be shared starts.
+#[derive(Clone, Copy)]
+struct Open {
+    shared: bool,
+    start: Instant,
+    cycles: usize,
 }
 
 /// Why the pool could not run a round.
@@ -364,6 +417,7 @@ impl Pool {
             agents,
             workers: ws,
             costs: Costs::default(),
+            open: Cell::new(None),
         })
     }
 
@@ -405,17 +459,30 @@ impl Pool {
     ) -> Result<(), PoolError> {
         let cycles = jobs.len();
         let shareable = cycles >= INLINE_BELOW && !self.workers.is_empty();
+        let now = Instant::now();
+        // The last round's time runs up to now: it includes the run loop's work on its
+        // outputs, which costs more when they were made on another core (ring50: 3.7 µs
+        // between rounds run alone, 6-8 µs between shared ones, in a round of 25-45 µs).
+        let last = self.open.take();
         if !shareable {
-            // Rounds this short are never shared, so their time is not taken.
+            // Rounds this short are never shared; the open round's time would include this
+            // one, so it is not taken.
             step(&self.agents, clock, jobs.drain(..), out)?;
-        } else if !self.costs.share() {
-            let start = Instant::now();
-            step(&self.agents, clock, jobs.drain(..), out)?;
-            self.costs.record(false, start.elapsed(), cycles);
         } else {
-            let start = Instant::now();
-            self.shared(jobs, clock, out)?;
-            self.costs.record(true, start.elapsed(), cycles);
+            if let Some(o) = last {
+                self.costs.record(o.shared, now - o.start, o.cycles);
+            }
+            let shared = self.costs.share();
+            if shared {
+                self.shared(jobs, clock, out)?;
+            } else {
+                step(&self.agents, clock, jobs.drain(..), out)?;
+            }
+            self.open.set(Some(Open {
+                shared,
+                start: now,
+                cycles,
+            }));
         }
         // Usually in order already (jobs come in agent order): then a single pass.
         out.sort_by_key(|(i, _)| *i);
@@ -562,27 +629,56 @@ mod tests {
         assert!(b.windows(2).all(|w| w[0].1 == w[1].0), "{b:?}");
     }
 
+    /// One job without input for each of agents `0..n`.
+    fn every_job(n: usize) -> Vec<Job> {
+        (0..n).map(|i| (i, Vec::new(), Vec::new())).collect()
+    }
+
+    /// What the cycles of `jobs` print on `n` fresh agents run on one thread.
+    fn printed_alone(n: usize, jobs: Vec<Job>) -> Vec<(usize, Vec<String>)> {
+        let alone = Pool::new(agents(n), 1).expect("pool");
+        let mut a = Vec::new();
+        step(&alone.agents, None, jobs, &mut a).expect("round");
+        printed(a)
+    }
+
     #[test]
     fn a_thread_done_with_its_part_runs_the_parts_of_threads_that_never_came() {
         let n = 9;
-        let alone = Pool::new(agents(n), 1).expect("pool");
         let pool = Pool::new(agents(n), 1).expect("pool");
-        let jobs = || {
-            (0..n)
-                .map(|i| (i, Vec::new(), Vec::new()))
-                .collect::<Vec<Job>>()
-        };
         // A round split for three threads, of which only the calling thread (0) ever runs.
-        let round = Round::new(&mut jobs(), None, n, 3);
+        let round = Round::new(&mut every_job(n), None, n, 3);
         round.work(&pool.agents, 0);
         let mut b = Vec::new();
         round.wait(&mut b).expect("round");
-        let mut a = Vec::new();
-        step(&alone.agents, None, jobs(), &mut a).expect("round");
-        assert_eq!(printed(b), printed(a));
+        assert_eq!(printed(b), printed_alone(n, every_job(n)));
         // A thread that comes late finds nothing left and changes nothing.
         round.work(&pool.agents, 2);
         assert_eq!(round.finished.load(Ordering::Relaxed), n);
+    }
+
+    #[test]
+    fn a_thread_leaves_the_part_of_a_thread_that_has_come_to_its_owner() {
+        let n = 8;
+        let pool = Pool::new(agents(n), 1).expect("pool");
+        // Split for two threads (agents 0-3 and 4-7); thread 1 has come to the round.
+        let round = Round::new(&mut every_job(n), None, n, 2);
+        round.parts[1].started.store(true, Ordering::Relaxed);
+        round.work(&pool.agents, 0);
+        assert_eq!(
+            round.finished.load(Ordering::Relaxed),
+            4,
+            "thread 0 ran only its own"
+        );
+        assert_eq!(
+            round.parts[1].next.load(Ordering::Relaxed),
+            4,
+            "part 1 untouched"
+        );
+        round.work(&pool.agents, 1);
+        let mut b = Vec::new();
+        round.wait(&mut b).expect("round");
+        assert_eq!(printed(b), printed_alone(n, every_job(n)));
     }
 
     #[test]
@@ -603,19 +699,45 @@ mod tests {
     #[test]
     fn rounds_are_shared_only_while_sharing_is_faster() {
         let c = Costs::default();
-        // Both ways are measured first: one round alone, then one shared.
+        // Running alone is measured first.
         assert!(!c.share());
         c.record(false, Duration::from_micros(100), 10);
-        assert!(c.share());
-        c.record(true, Duration::from_micros(400), 10);
-        // Sharing is slower: rounds run alone, but sharing is tried again now and then.
-        let shared: Vec<u32> = (1..=2 * EXPLORE_EVERY).filter(|_| c.share()).collect();
-        assert_eq!(shared.len(), 2);
-        // Once sharing has become the faster way, it is the one taken.
+        // Then sharing, in a try of several rounds in a row: waking the workers makes the
+        // first one slow, and it is not measured.
+        for k in 0..TRY_ROUNDS {
+            assert!(c.share(), "round {k} of the try");
+            let took = if k == 0 { 4000 } else { 400 };
+            c.record(true, Duration::from_micros(took), 10);
+        }
+        assert_eq!(c.shared.get(), 40_000.0);
+        // Sharing is slower: rounds run alone, but sharing is tried again now and then, again
+        // for several rounds in a row.
+        let calls = EXPLORE_EVERY + TRY_ROUNDS - 1;
+        let shared: Vec<u32> = (1..=calls).filter(|_| c.share()).collect();
+        let tried: Vec<u32> = (EXPLORE_EVERY..=calls).collect();
+        assert_eq!(shared, tried);
+        // Once sharing has become the faster way, it is the one taken; running alone is tried
+        // now and then, several rounds in a row.
         for _ in 0..40 {
             c.record(true, Duration::from_micros(20), 10);
         }
-        let alone = (1..=EXPLORE_EVERY).filter(|_| !c.share()).count();
-        assert_eq!(alone, 1);
+        let alone: Vec<u32> = (1..=calls).filter(|_| !c.share()).collect();
+        assert_eq!(alone, tried);
+    }
+
+    #[test]
+    fn the_first_round_after_a_change_of_way_is_not_measured() {
+        let c = Costs::default();
+        c.record(false, Duration::from_micros(100), 10);
+        // It woke the workers: left out.
+        c.record(true, Duration::from_millis(10), 10);
+        assert_eq!(c.shared.get(), 0.0);
+        c.record(true, Duration::from_micros(50), 10);
+        assert_eq!(c.shared.get(), 5_000.0);
+        // It fetched the agents the workers ran: left out.
+        c.record(false, Duration::from_millis(10), 10);
+        assert_eq!(c.inline.get(), 10_000.0);
+        c.record(true, Duration::from_millis(10), 10);
+        assert_eq!(c.shared.get(), 5_000.0);
     }
 }
