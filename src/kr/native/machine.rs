@@ -5,12 +5,12 @@
 use super::budget::CHECK_EVERY;
 use super::clauses::{Args, Direct, Regs};
 use super::code::{Code, Key, UNSET};
+use super::draws::Draws;
 use super::store::{Cell, Store, VarNames};
 use crate::kr::error::{KrError, KrResult, Limits};
 use crate::kr::factbase::{FactBase, Scan};
 use crate::kr::knowledge::{Knowledge, Pred, PredRef};
 use crate::term::{Subst, Sym, Term};
-use rand_chacha::ChaCha8Rng;
 use std::collections::HashSet;
 
 pub(crate) const NONE: u32 = u32::MAX;
@@ -150,7 +150,7 @@ pub(crate) struct Ctx<'a> {
     pub bases: &'a [&'a FactBase],
     pub goal_facts: &'a [Term],
     pub limits: &'a Limits,
-    pub rng: &'a mut ChaCha8Rng,
+    pub rng: &'a mut Draws,
     pub out: &'a mut String,
     pub clock: &'a mut super::Clock,
     /// The atoms the engine's queries have made at run time so far (see `budget::new_atom`).

@@ -10,6 +10,7 @@ pub(crate) mod catch;
 pub(crate) mod clauses;
 pub(crate) mod code;
 pub(crate) mod control;
+pub(crate) mod draws;
 pub(crate) mod facts;
 pub mod library;
 pub(crate) mod lists;
@@ -23,9 +24,8 @@ pub(crate) mod text;
 use super::error::{KrResult, Limits};
 use super::{Engine, View};
 use crate::term::{Subst, Sym, Term};
+use draws::Draws;
 use machine::{Ctx, Machine, Solver};
-use rand_chacha::rand_core::SeedableRng;
-use rand_chacha::ChaCha8Rng;
 use std::cell::RefCell;
 use std::collections::HashSet;
 
@@ -41,7 +41,7 @@ pub struct NativeEngine {
     pub limits: Limits,
     /// Unify with the occurs check (off by default, as in Prolog systems).
     pub occurs_check: bool,
-    rng: ChaCha8Rng,
+    rng: Draws,
     output: String,
     /// What `get_time/1` answers.
     pub clock: Clock,
@@ -70,7 +70,7 @@ impl NativeEngine {
         NativeEngine {
             limits: Limits::default(),
             occurs_check: false,
-            rng: ChaCha8Rng::seed_from_u64(seed),
+            rng: Draws::seeded(seed),
             output: String::new(),
             clock: Clock::default(),
             prepared: prepared::Cache::default(),
@@ -87,7 +87,12 @@ impl NativeEngine {
     /// A value that changes whenever a query drew a random number or read the clock (a
     /// query that did neither gives the same answers when asked again on the same state).
     pub fn chance(&self) -> u128 {
-        self.rng.get_word_pos() + u128::from(self.clock.reads)
+        u128::from(self.rng.count()) + u128::from(self.clock.reads)
+    }
+
+    /// True when output built-ins wrote text not yet taken.
+    pub fn has_output(&self) -> bool {
+        !self.output.is_empty()
     }
 
     /// Runs `query`, handing each answer to `each` until it returns false or answers run out.
