@@ -109,8 +109,13 @@ impl MentalState {
     /// Updates the model of `sender` from a received message (docs/coming-from-goal.md, "Mental models"), then drops the goals of
     /// that model that its beliefs achieve. Nothing happens unless models are kept, or for a
     /// message from this agent itself.
-    pub fn update_model(&mut self, sender: &str, content: &Term) -> Result<(), Fault> {
-        if !self.models.enabled || sender == self.models.me {
+    pub fn update_model(&mut self, sender: Sym, content: &Term) -> Result<(), Fault> {
+        // The sender's name is looked up only when models are on (most programs: off).
+        if !self.models.enabled {
+            return Ok(());
+        }
+        let sender = sender.name();
+        if sender == self.models.me {
             return Ok(());
         }
         self.models.receive(sender, content);

@@ -265,7 +265,7 @@ impl Core {
             let Some(content) = self.timing.accept(&m.content) else {
                 continue;
             };
-            self.ms.update_model(m.sender.name(), &content)?;
+            self.ms.update_model(m.sender, &content)?;
             self.converse(m.sender, m.receiver, &content);
             let sender = Term::Atom(m.sender);
             if record {
