@@ -599,8 +599,7 @@ impl Agent {
 
     /// Moves what the KR engine printed this cycle into the cycle's output, line by line.
     fn collect_printed(&mut self) {
-        let kr_text = self.core.ms.take_output();
-        self.core.kr_out.push_str(&kr_text);
+        self.core.ms.move_output_to(&mut self.core.kr_out);
         if !self.core.kr_out.is_empty() {
             let text = std::mem::take(&mut self.core.kr_out);
             self.core

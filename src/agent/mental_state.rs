@@ -493,11 +493,13 @@ impl MentalState {
         }
     }
 
-    /// Text written by Prolog output built-ins since the last call.
-    pub fn take_output(&self) -> String {
-        match self.engine.try_borrow_mut() {
-            Ok(mut e) => e.take_output(),
-            Err(_) => String::new(),
+    /// Appends to `to` the text written by Prolog output built-ins since the last call.
+    pub fn move_output_to(&self, to: &mut String) {
+        if let Ok(mut e) = self.engine.try_borrow_mut() {
+            // Most cycles print nothing: no empty string is taken, appended and dropped then.
+            if e.has_output() {
+                to.push_str(&e.take_output());
+            }
         }
     }
 

@@ -130,6 +130,16 @@ impl AgentEngine {
         }
     }
 
+    /// False only when nothing printed since the last `take_output` (a scryer engine always
+    /// answers true: its output is simply taken).
+    pub fn has_output(&self) -> bool {
+        match self {
+            AgentEngine::Native(e) => e.has_output(),
+            #[cfg(feature = "scryer")]
+            AgentEngine::Scryer(_) => true,
+        }
+    }
+
     /// Changes whenever a query drew a random number or read the clock (native engine; a
     /// scryer agent is never considered waiting on chance: 0 always).
     pub fn chance(&self) -> u128 {
