@@ -4,6 +4,7 @@
 use super::error::{KrError, LoadError};
 use super::fxhash::FxHashMap;
 use super::native::builtins::{self, B};
+use super::native::clauses::MAX_REGS;
 use super::native::code::{Code, Key};
 use super::native::store::Cell;
 use crate::term::{well_known as wk, Sym, Term};
@@ -18,6 +19,9 @@ pub(crate) struct Clause {
     /// The predicate each body goal calls, resolved when loading finishes.
     pub preds: Vec<Option<PredRef>>,
     pub nslots: u32,
+    /// The cells of the first body goal's arguments when they fit the argument registers and
+    /// none is a structure (see `place_args`): fixed by the clause, so found once here.
+    pub flat_first: Option<(u32, u32)>,
     pub key: Option<Key>,
     /// The key of the second head argument (for the second-argument index).
     pub key2: Option<Key>,
@@ -494,6 +498,10 @@ impl Knowledge {
                 body_cells.push(code.add(&g, &mut vars));
             }
         }
+        let flat_first = body_cells
+            .first()
+            .and_then(|&g| code.flat_args(g))
+            .filter(|&(from, end)| (end - from) as usize <= MAX_REGS);
         let key = head.args().first().and_then(Key::of_term);
         let key2 = head.args().get(1).and_then(Key::of_term);
         self.preds[idx as usize].clauses.push(Clause {
@@ -502,6 +510,7 @@ impl Knowledge {
             preds: Vec::new(),
             body: body_cells,
             nslots: vars.len() as u32,
+            flat_first,
             key,
             key2,
         });
