@@ -596,4 +596,38 @@ mod tests {
         assert_eq!(count("u(_)"), count("w"));
         assert_eq!(count("v"), Ok(1));
     }
+
+    #[test]
+    fn a_first_body_goal_of_slots_and_constants_that_fit_the_registers_is_marked_flat() {
+        let (mut r, kn) = load(
+            "f(X, Z) :- q(X, a, 1, Y, Z, Y). s(X, Z) :- q(g(X), a, 1, Y, Z, Y). \
+             n(X) :- r(X, 1, 2, 3, 4, 5, 6, 7, 8). \
+             q(A, B, C, D, E, F) :- D = E, F = k(A, B, C). r(A, _, _, _, _, _, _, _, B) :- A = B.",
+        );
+        let flat = |name: &str| {
+            let p = kn
+                .preds
+                .iter()
+                .find(|p| crate::term::Term::Atom(p.name).to_string() == name);
+            p.unwrap().clauses[0]
+                .flat_first
+                .map(|(from, end)| end - from)
+        };
+        assert_eq!(flat("f"), Some(6));
+        assert_eq!(flat("s"), None, "a structure is built on the heap");
+        assert_eq!(flat("n"), None, "nine arguments do not fit the registers");
+        let mut e = NativeEngine::new(0);
+        let view = View::beliefs(&kn, &[]);
+        let mut answers = |q: &str| -> Vec<String> {
+            let q = r.term(q, 0).unwrap().term;
+            e.query(&view, &q)
+                .unwrap()
+                .iter()
+                .map(|s| s.iter().map(|(_, t)| t.to_string()).collect::<String>())
+                .collect()
+        };
+        assert_eq!(answers("f(b, Z)"), ["k(b,a,1)"]);
+        assert_eq!(answers("s(b, Z)"), ["k(g(b),a,1)"]);
+        assert_eq!(answers("n(W)"), ["8"]);
+    }
 }
