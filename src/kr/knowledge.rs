@@ -4,6 +4,7 @@
 use super::error::{KrError, LoadError};
 use super::fxhash::FxHashMap;
 use super::native::builtins::{self, B};
+use super::native::clauses::MAX_REGS;
 use super::native::code::{Code, Key};
 use super::native::store::Cell;
 use crate::term::{well_known as wk, Sym, Term};
@@ -18,6 +19,9 @@ pub(crate) struct Clause {
     /// The predicate each body goal calls, resolved when loading finishes.
     pub preds: Vec<Option<PredRef>>,
     pub nslots: u32,
+    /// The cells of the first body goal's arguments when they fit the argument registers and
+    /// none is a structure (see `place_args`): fixed by the clause, so found once here.
+    pub flat_first: Option<(u32, u32)>,
     pub key: Option<Key>,
     /// The key of the second head argument (for the second-argument index).
     pub key2: Option<Key>,
@@ -494,6 +498,10 @@ impl Knowledge {
                 body_cells.push(code.add(&g, &mut vars));
             }
         }
+        let flat_first = body_cells
+            .first()
+            .and_then(|&g| code.flat_args(g))
+            .filter(|&(from, end)| (end - from) as usize <= MAX_REGS);
         let key = head.args().first().and_then(Key::of_term);
         let key2 = head.args().get(1).and_then(Key::of_term);
         self.preds[idx as usize].clauses.push(Clause {
@@ -502,6 +510,7 @@ impl Knowledge {
             preds: Vec::new(),
             body: body_cells,
             nslots: vars.len() as u32,
+            flat_first,
             key,
             key2,
         });
@@ -586,5 +595,39 @@ mod tests {
         assert_eq!(count("t"), count("w"));
         assert_eq!(count("u(_)"), count("w"));
         assert_eq!(count("v"), Ok(1));
+    }
+
+    #[test]
+    fn a_first_body_goal_of_slots_and_constants_that_fit_the_registers_is_marked_flat() {
+        let (mut r, kn) = load(
+            "f(X, Z) :- q(X, a, 1, Y, Z, Y). s(X, Z) :- q(g(X), a, 1, Y, Z, Y). \
+             n(X) :- r(X, 1, 2, 3, 4, 5, 6, 7, 8). \
+             q(A, B, C, D, E, F) :- D = E, F = k(A, B, C). r(A, _, _, _, _, _, _, _, B) :- A = B.",
+        );
+        let flat = |name: &str| {
+            let p = kn
+                .preds
+                .iter()
+                .find(|p| crate::term::Term::Atom(p.name).to_string() == name);
+            p.unwrap().clauses[0]
+                .flat_first
+                .map(|(from, end)| end - from)
+        };
+        assert_eq!(flat("f"), Some(6));
+        assert_eq!(flat("s"), None, "a structure is built on the heap");
+        assert_eq!(flat("n"), None, "nine arguments do not fit the registers");
+        let mut e = NativeEngine::new(0);
+        let view = View::beliefs(&kn, &[]);
+        let mut answers = |q: &str| -> Vec<String> {
+            let q = r.term(q, 0).unwrap().term;
+            e.query(&view, &q)
+                .unwrap()
+                .iter()
+                .map(|s| s.iter().map(|(_, t)| t.to_string()).collect::<String>())
+                .collect()
+        };
+        assert_eq!(answers("f(b, Z)"), ["k(b,a,1)"]);
+        assert_eq!(answers("s(b, Z)"), ["k(g(b),a,1)"]);
+        assert_eq!(answers("n(W)"), ["8"]);
     }
 }

@@ -405,7 +405,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             nx = m.frames.len() as u32 - 1;
         }
         if let Some(pred) = direct {
-            let args = place_args(m, &cl.code, cl.body[0]);
+            let args = place_args(m, &cl.code, cl.body[0], cl.flat_first);
             self.direct = Direct::new(pred, args, nx, d + 1);
         }
         self.cont = nx;
@@ -414,15 +414,20 @@ impl<'a, 'm> Solver<'a, 'm> {
 }
 
 /// Places the arguments of the compiled goal `goal` for a call: in the argument registers
-/// when none is a structure (fresh variables are made in the order a block copy would make
-/// them), else built as a block on the heap.
+/// when `flat` gives their cells (none is a structure and they fit; fresh variables are made
+/// in the order a block copy would make them), else built as a block on the heap.
 #[inline(always)]
-fn place_args(m: &mut Machine, code: &Code, goal: Cell) -> Args {
-    let Some(cells) = code.flat_args(goal).filter(|c| c.len() <= MAX_REGS) else {
+fn place_args(m: &mut Machine, code: &Code, goal: Cell, flat: Option<(u32, u32)>) -> Args {
+    let Some((from, end)) = flat else {
         return Args::Heap(code.build_args(&mut m.st, goal, &mut m.slots));
     };
-    for (i, &c) in cells.iter().enumerate() {
-        m.regs.0[i] = match c {
+    let cells = &code.cells[from as usize..end as usize];
+    debug_assert!(
+        cells.len() <= MAX_REGS,
+        "checked when the clause was loaded"
+    );
+    for (r, &c) in m.regs.0.iter_mut().zip(cells) {
+        *r = match c {
             Cell::Ref(k) if (k as usize) < m.slots.len() => {
                 // By value: a copy made field by field and read back whole stalls the
                 // store-to-load forwarding.

@@ -240,30 +240,34 @@ impl Code {
         }
     }
 
-    /// The argument cells of the compiled goal `root` when none of them is a structure (they
-    /// are slots and constants, each built alone); `None` otherwise.
-    #[inline]
-    pub fn flat_args(&self, root: Cell) -> Option<&[Cell]> {
+    /// The range of the argument cells of the compiled goal `root` when none of them is a
+    /// structure (they are slots and constants, each built alone); `None` otherwise. Computed
+    /// once per clause when it is loaded (see `Clause::flat_first`).
+    pub fn flat_args(&self, root: Cell) -> Option<(u32, u32)> {
         match root {
             Cell::Ptr(off) => {
-                let (from, end) = (off as usize + 1, self.ends[off as usize] as usize);
-                let n = self.cells[off as usize].fun().map_or(0, |f| f.1 as usize);
-                (end - from == n).then(|| &self.cells[from..end])
+                let (from, end) = (off + 1, self.ends[off as usize]);
+                let n = self.cells[off as usize].fun().map_or(0, |f| f.1);
+                (end - from == n).then_some((from, end))
             }
-            _ => Some(&[]),
+            _ => Some((0, 0)),
         }
     }
 
-    /// Copies cells `from..end` of this code to the top of the heap, then rewrites the cells
-    /// that mean something else on the heap (slots, offsets, string indices); returns the heap
-    /// address of the first copied cell.
+    /// Copies cells `from..end` of this code to the top of the heap, rewriting the cells that
+    /// mean something else on the heap (slots, offsets, string indices) as they are written;
+    /// returns the heap address of the first copied cell. One pass into the reserved capacity:
+    /// a block is a few cells, for which a copy call and a second pass cost more than the work.
     #[inline]
     fn copy_cells(&self, store: &mut Store, from: u32, end: u32, slots: &mut [Cell]) -> u32 {
-        let base = store.heap.len() as u32;
         let Store { heap, strs, .. } = store;
-        heap.extend_from_slice(&self.cells[from as usize..end as usize]);
-        for (a, c) in (base..).zip(&mut heap[base as usize..]) {
-            match *c {
+        let base = heap.len() as u32;
+        let src = &self.cells[from as usize..end as usize];
+        heap.reserve(src.len());
+        let dst = &mut heap.spare_capacity_mut()[..src.len()];
+        for ((d, &s), a) in dst.iter_mut().zip(src).zip(base..) {
+            let c = d.write(s);
+            match s {
                 // A set slot's value is copied whole (see `Solver::try_clause`).
                 // A new variable is written whole, as the callee reads it (see `write_ref`).
                 Cell::Ref(k) => match slots.get(k as usize) {
@@ -286,6 +290,10 @@ impl Code {
                 _ => {}
             }
         }
+        // SAFETY: the loop initialised every cell of `dst`, the `src.len()` cells after the
+        // old length (a zip runs to its shortest side; `dst` and `src` have that length, and
+        // `base..` does not end first), within the capacity reserved above.
+        unsafe { heap.set_len(base as usize + src.len()) };
         base
     }
 
