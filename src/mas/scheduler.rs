@@ -1,13 +1,12 @@
 //! The worker pool: each thread owns a contiguous range of the agents (the calling thread
 //! included) and runs their cycles of a shared round, claiming them a few at a time; a thread
 //! done with its own part claims what is left of the parts of threads that have not come to
-//! the round yet. The outputs are returned in
-//! agent-index order, so the result never depends on thread timing. Owning keeps an agent's
-//! state (its engine heap, fact base, mailbox) in the cache of the core that ran it last, and
-//! a token ring's messages mostly stay within one thread's range; claiming from the others
-//! keeps a round moving when the machine is busy: a worker thread that waits for a core only
-//! takes work once it runs, and until then the others take its part; once it has come, its
-//! part is its own. Rounds with very few cycles
+//! the round yet. The outputs are returned in agent-index order, so the result never depends
+//! on thread timing. Owning keeps an agent's state (its engine heap, fact base, mailbox) in the
+//! cache of the core that ran it last, and a token ring's messages mostly stay within one
+//! thread's range; claiming from the others keeps a round moving when the machine is busy: a
+//! worker thread that waits for a core only takes work once it runs, and until then the others
+//! take its part; once it has come, its part is its own. Rounds with very few cycles
 //! (a token ring moves one agent per round) run entirely on the calling thread: waking a
 //! thread costs more than such a cycle. Between rounds both sides wait by spinning briefly
 //! before they block: rounds are often shorter than putting a thread to sleep and waking it.
