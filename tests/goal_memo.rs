@@ -52,6 +52,7 @@ fn kept_goal_answers_serve_rules_that_find_no_answer() {
     assert_eq!(after("a-goal(g(X))", "print(mid)"), ["mid", "b"]);
     assert_eq!(after("goal-a(g(X))", "print(mid)"), ["mid", "a"]);
 }
+
 #[test]
 fn a_kept_goal_answer_does_not_survive_a_cycle() {
     // Main's linear pass: the first rule finds no answer in each cycle, the second achieves

@@ -549,7 +549,7 @@ impl Agent {
             && done.messages.is_empty()
             && done.printed.is_empty()
             && !self.core.timing.busy()
-            && self.chance() == self.chance_before_main;
+            && chance(&self.core) == self.chance_before_main;
         self.core.out.waiting = self.waiting;
         // The agent keeps what `out` held: clear when the caller passed it clear, else
         // cleared when its next step starts (`is_clear` above).
@@ -572,7 +572,7 @@ impl Agent {
                 .and_then(|t| Instant::now().checked_add(t)),
         );
         let prog = self.program.clone();
-        match self.run_once(&prog, m) {
+        match run_once(&mut self.core, &prog, m) {
             Ok(()) => self.core.event(Event::Stopped {
                 reason: "run ended".to_string(),
             }),
@@ -617,11 +617,6 @@ impl Agent {
             self.main.clear();
             self.waiting = false;
         }
-    }
-
-    /// Changes whenever the agent drew a random number or read the clock in a query.
-    fn chance(&self) -> u128 {
-        chance(&self.core)
     }
 
     fn stop(&mut self, reason: StopReason) {
@@ -716,7 +711,7 @@ impl Agent {
     fn shut_down(&mut self, reason: StopReason) -> StopReason {
         let prog = self.program.clone();
         match (prog.shutdown, &reason) {
-            (Some(m), StopReason::MainExited) => match self.run_once(&prog, m) {
+            (Some(m), StopReason::MainExited) => match run_once(&mut self.core, &prog, m) {
                 Ok(()) => reason,
                 Err(e) => {
                     self.core.event(Event::Error {
@@ -728,11 +723,6 @@ impl Agent {
             _ => reason,
         }
     }
-
-    /// Runs `init` or `event` to completion (no cycle boundaries inside).
-    fn run_once(&mut self, prog: &Program, idx: usize) -> Result<(), RuntimeError> {
-        run_once(&mut self.core, prog, idx)
-    }
 }
 
 /// A duration as seconds, e.g. `2s` or `0.5s`.
@@ -740,8 +730,8 @@ pub fn show_duration(d: Duration) -> String {
     format!("{}s", d.as_secs_f64())
 }
 
-/// Runs module `idx` of `prog` (`init` or `event`) to completion on `core` (no cycle
-/// boundaries inside).
+/// Runs module `idx` of `prog` (`init`, `event` or `shutdown`) to completion on `core` (no
+/// cycle boundaries inside).
 fn run_once(core: &mut Core, prog: &Program, idx: usize) -> Result<(), RuntimeError> {
     let f = core
         .enter(prog, idx, &[], None)
@@ -751,7 +741,7 @@ fn run_once(core: &mut Core, prog: &Program, idx: usize) -> Result<(), RuntimeEr
     Ok(())
 }
 
-/// [`Agent::chance`] of the agent with `core`.
+/// Changes whenever the agent with `core` drew a random number or read the clock in a query.
 fn chance(core: &Core) -> u128 {
     core.ms.engine.try_borrow().map_or(0, |e| e.chance())
 }
