@@ -102,11 +102,17 @@ mod tests {
                     assert!(!p.is_null() && p as usize % align == 0, "{size}/{align}");
                     std::ptr::write_bytes(p, 0xab, size);
                     let q = Hybrid.realloc(p, layout, size * 3);
-                    assert!(!q.is_null() && q as usize % align == 0, "{size}/{align} grown");
+                    assert!(
+                        !q.is_null() && q as usize % align == 0,
+                        "{size}/{align} grown"
+                    );
                     assert!((0..size).all(|i| *q.add(i) == 0xab), "{size}/{align} kept");
                     Hybrid.dealloc(q, Layout::from_size_align(size * 3, align).expect("l"));
                     let z = Hybrid.alloc_zeroed(layout);
-                    assert!(!z.is_null() && z as usize % align == 0, "{size}/{align} zeroed");
+                    assert!(
+                        !z.is_null() && z as usize % align == 0,
+                        "{size}/{align} zeroed"
+                    );
                     assert!((0..size).all(|i| *z.add(i) == 0), "{size}/{align} zeroes");
                     Hybrid.dealloc(z, layout);
                 }

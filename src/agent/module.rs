@@ -187,10 +187,14 @@ impl Core {
         // Set by an iteration that only evaluated a rule which found no answers: the next
         // iteration sees the mental state that rule saw, so kept goal answers stay valid.
         let mut quiet = false;
+        // The rules of the top frame's block (bit `i`: rule `i`) that `rule_inapplicable` passed
+        // over since the last iteration that could change what it reads (see `Unchanged`).
+        let mut passed = Unchanged::default();
         loop {
             if !std::mem::take(&mut quiet) {
                 self.ms.goal_memo.get_mut().clear();
             }
+            passed.step();
             steps += 1;
             // The clock is read every 64 steps only: a step is cheap, reading the clock not.
             if steps.is_multiple_of(64) {
@@ -240,7 +244,13 @@ impl Core {
                             continue;
                         };
                         // Passed over without an evaluation: no answers to make or drop.
+                        if passed.again(ri) {
+                            self.evaluated(rule, 0);
+                            quiet = true;
+                            continue;
+                        }
                         if self.rule_inapplicable(rule, &f.subst) {
+                            passed.mark(ri);
                             quiet = true;
                             continue;
                         }
@@ -280,6 +290,8 @@ impl Core {
                     let b = f.block;
                     f.next = 0;
                     f.pass_acted = false;
+                    // Another pass of the same frame: nothing `rule_inapplicable` reads changes.
+                    passed.keep();
                     // A fixed order stays as it is; a random one is drawn again.
                     if is_shuffled(prog.blocks[b].order) {
                         let order = self.order(prog, b);
@@ -507,6 +519,56 @@ impl Core {
     }
 }
 
+/// The rules of the top frame's block that [`Core::rule_inapplicable`] passed over while
+/// nothing it reads changed, so each would be passed over again.
+///
+/// Exact: `rule_inapplicable` is a function of the mental state, the rule and the frame's
+/// substitution alone (it draws no random number, reads no clock, changes nothing). The set is
+/// kept only across iterations of the module loop that pass over a rule (which read only) or
+/// end a pass of the same frame and start another (which changes the frame's position and,
+/// for a shuffled order, draws a new order, neither of which it reads); every other iteration
+/// (an evaluation, an action, a frame pushed or popped, a cycle boundary: `run` returns) drops
+/// it. `goal why` never sees a rule passed over this way (`rule_inapplicable` passes over
+/// nothing while it records, so no bit is set).
+#[derive(Default)]
+struct Unchanged {
+    rules: u64,
+    kept: bool,
+}
+
+impl Unchanged {
+    /// Starts a loop iteration: the set survives only if the last iteration kept it.
+    #[inline(always)]
+    fn step(&mut self) {
+        if !std::mem::take(&mut self.kept) {
+            self.rules = 0;
+        }
+    }
+
+    /// This iteration changes nothing `rule_inapplicable` reads.
+    #[inline(always)]
+    fn keep(&mut self) {
+        self.kept = true;
+    }
+
+    /// Records that rule `i` was passed over (rules past the 64th are not remembered).
+    #[inline(always)]
+    fn mark(&mut self, i: usize) {
+        if i < 64 {
+            self.rules |= 1 << i;
+        }
+        self.kept = true;
+    }
+
+    /// True when rule `i` was passed over with nothing changed since (and keeps the set).
+    #[inline(always)]
+    fn again(&mut self, i: usize) -> bool {
+        let again = i < 64 && self.rules & (1 << i) != 0;
+        self.kept |= again;
+        again
+    }
+}
+
 /// The rule being run on top of `stack` (block, rule, line), for locating an error raised
 /// between steps.
 fn running_rule(prog: &Program, stack: &[Frame]) -> Option<(usize, usize, usize)> {
@@ -547,5 +609,53 @@ fn exit_module(stack: &mut Vec<Frame>) {
             None => false,
         };
         propagate(stack, acted);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::agent::cycle::{Agent, AgentConfig};
+    use crate::agent::program::Program;
+
+    /// What the agent of `src` prints in its first cycle.
+    fn first_cycle_prints(src: &str) -> Vec<String> {
+        let prog = Program::from_source("t.goal", src).expect("compiles");
+        let mut a = Agent::new(prog, "a", AgentConfig::default());
+        let out = a.step(&[], &[]);
+        assert!(a.stopped().is_none(), "{:?}", a.stopped());
+        out.printed
+    }
+
+    #[test]
+    fn a_rule_passed_over_is_looked_at_again_once_an_action_changed_the_state() {
+        // The init module runs `m` to its end within one cycle: its first pass passes over
+        // the first rule (no `p` yet) and inserts `p`; the next pass must look at the first
+        // rule again, not remember it as passed over.
+        let out = first_cycle_prints(
+            "init module { program { if true then m. } }
+             module m [exit=noaction] { program [order=linear] {
+                if bel(p) then print(got) + exit-module.
+                if not(bel(p)) then insert(p).
+             } }
+             main module { program { if true then print(main). } }",
+        );
+        assert_eq!(out.first().map(String::as_str), Some("got"), "{out:?}");
+    }
+
+    #[test]
+    fn rules_passed_over_after_an_action_are_passed_over_in_the_next_pass() {
+        // The first pass deletes `todo(1)`, then passes over the other two rules; the next
+        // pass passes over all three (the last two from what the first pass found) and `m`
+        // exits with nothing more done.
+        let out = first_cycle_prints(
+            "init module { beliefs { todo(1). } program { if true then m + print(back). } }
+             module m [exit=noaction] { program [order=linearall] {
+                if bel(todo(X)) then delete(todo(X)).
+                if bel(q(X)) then print(X).
+                if bel(todo(X)) then print(again).
+             } }
+             main module { program { if true then print(main). } }",
+        );
+        assert_eq!(out, ["back", "main"]);
     }
 }

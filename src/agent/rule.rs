@@ -147,7 +147,7 @@ impl Core {
 
     /// Records that a rule's condition was evaluated, with its number of answers.
     #[inline(always)]
-    fn evaluated(&mut self, rule: &RuleDef, answers: usize) {
+    pub(super) fn evaluated(&mut self, rule: &RuleDef, answers: usize) {
         // The level check inline, the recording out of line: most runs do not trace rules.
         if self.level >= TraceLevel::Rules {
             self.record_evaluated(rule, answers);

@@ -161,6 +161,14 @@ impl FactBase {
             && self.preds.contains_key(&(name, arity as u32))
     }
 
+    /// False when no fact of predicate `name/arity` is present, by the quick filter alone (true
+    /// may still be wrong): for a reader about to [`FactBase::scan`], which finds nothing for an
+    /// absent predicate anyway, so the exact test's hashing would be paid twice.
+    #[inline]
+    pub fn may_have_pred(&self, name: Sym, arity: usize) -> bool {
+        self.pred_bits & pred_bit(name, arity as u32) != 0
+    }
+
     /// Adds a fact (an atom or compound term, normally ground); returns false when it was
     /// already present or is not a callable term.
     pub fn insert(&mut self, fact: Term) -> bool {

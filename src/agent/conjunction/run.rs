@@ -357,14 +357,20 @@ impl<'a> Run<'a, '_> {
             return Ok(());
         }
         let (k1, k2) = (self.arg_key(p, 0)?, self.arg_key(p, 1)?);
+        // The base after which the messages waiting aside are read (none for other predicates).
+        let mail_after = match (name, arity) == (wk::RECEIVED, 2) {
+            true => self.arrived.after,
+            false => usize::MAX,
+        };
         for (i, base) in bases.iter().enumerate() {
-            if base.has_pred(name, arity) {
+            // The quick filter only: a scan of an absent predicate finds nothing.
+            if base.may_have_pred(name, arity) {
                 let mut scan = base.scan(name, arity as u32, k1, k2);
                 while let Some(fact) = base.advance(&mut scan) {
                     self.try_match(then, |run| run.match_fact(p, fact))?;
                 }
             }
-            if i == self.arrived.after && (name, arity) == (wk::RECEIVED, 2) {
+            if i == mail_after {
                 for args in self.arrived.received {
                     self.try_match(then, |run| run.match_args(p, args))?;
                 }
