@@ -488,6 +488,8 @@ impl Core {
     }
 
     /// A runtime error located at a module head.
+    #[cold]
+    #[inline(never)]
     pub fn module_error(&self, prog: &Program, module: usize, f: Fault) -> RuntimeError {
         let mut e = self.error(prog, None, f);
         e.line = prog.modules.get(module).map_or(0, |m| m.line);
@@ -498,7 +500,10 @@ impl Core {
         e
     }
 
-    /// A runtime error with file, line and rule.
+    /// A runtime error with file, line and rule (out of line: the module loop then inlines
+    /// less that runs only on an error, and keeps fewer values at hand for every step).
+    #[cold]
+    #[inline(never)]
     pub fn error(
         &self,
         prog: &Program,
