@@ -491,19 +491,10 @@ impl Agent {
         // percepts to the batch; messages that came during sleep arrive when it wakes.
         let (mut batch, mut held) = (None, None);
         if self.core.timing.busy() {
-            let now = self.core.now_ms();
-            if self.core.timing.asleep(now, messages) {
-                self.core.out = CycleOutput::default();
-                self.core
-                    .perceive(percepts, &self.types, self.program.uses_newpercept);
-                std::mem::swap(out, &mut self.core.out);
+            let Some(timed) = self.timed_input(percepts, messages, out) else {
                 return;
-            }
-            held = self.core.timing.wake_messages(messages);
-            let due = self.core.timing.due(now);
-            if !due.is_empty() {
-                batch = Some([percepts, &due].concat());
-            }
+            };
+            (batch, held) = timed;
         }
         let percepts = batch.as_deref().unwrap_or(percepts);
         let messages = held.as_deref().unwrap_or(messages);
@@ -554,6 +545,32 @@ impl Agent {
         // The agent keeps what `out` held: clear when the caller passed it clear, else
         // cleared when its next step starts (`is_clear` above).
         std::mem::swap(out, &mut self.core.out);
+    }
+
+    /// The input of a cycle of an agent that sleeps or has timers: the percepts with the due
+    /// timers' added and the messages held during sleep (`None` each: as given); `None` when
+    /// the agent sleeps on (it only perceived: the cycle's output is in `out`). Out of line:
+    /// most agents never sleep.
+    #[cold]
+    #[inline(never)]
+    fn timed_input(
+        &mut self,
+        percepts: &[Term],
+        messages: &[Message],
+        out: &mut CycleOutput,
+    ) -> Option<(Option<Vec<Term>>, Option<Vec<Message>>)> {
+        let now = self.core.now_ms();
+        if self.core.timing.asleep(now, messages) {
+            self.core.out = CycleOutput::default();
+            self.core
+                .perceive(percepts, &self.types, self.program.uses_newpercept);
+            std::mem::swap(out, &mut self.core.out);
+            return None;
+        }
+        let held = self.core.timing.wake_messages(messages);
+        let due = self.core.timing.due(now);
+        let batch = (!due.is_empty()).then(|| [percepts, &due].concat());
+        Some((batch, held))
     }
 
     /// Runs the shutdown module (modular GOAL) once, as the agent's last cycle, because the

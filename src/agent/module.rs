@@ -217,16 +217,9 @@ impl Core {
             match top {
                 Frame::Module(f) => {
                     if f.exiting {
-                        let f = f.clone();
-                        stack.pop();
-                        self.leave(prog, &f).map_err(|e| match f.module {
-                            Some(m) => self.module_error(prog, m, e),
-                            None => self.error(prog, None, e),
-                        })?;
-                        if stack.is_empty() {
+                        if self.exit_frame(prog, stack)? {
                             return Ok(RunEnd::Finished);
                         }
-                        propagate(stack, f.acted);
                         continue;
                     }
                     let block = &prog.blocks[f.block];
@@ -387,14 +380,8 @@ impl Core {
                             exit_module(stack);
                         }
                         Act::Module { module, args } => {
-                            let c = c.clone();
                             let f = self
-                                .enter(
-                                    prog,
-                                    *module,
-                                    args,
-                                    Some((&c.answer.subst, &c.answer, &rule.cond)),
-                                )
+                                .call(prog, c, (*module, args), &rule.cond)
                                 .map_err(|e| self.error(prog, loc, e))?;
                             stack.push(Frame::Module(f));
                         }
@@ -434,6 +421,37 @@ impl Core {
                 }
             }
         }
+    }
+
+    /// Pops the exiting module frame on top of `stack` and leaves it; true when it was the
+    /// bottom frame. Out of line: the module loop runs it once per module left.
+    #[inline(never)]
+    fn exit_frame(&mut self, prog: &Program, stack: &mut Vec<Frame>) -> Result<bool, RuntimeError> {
+        let Some(Frame::Module(f)) = stack.pop() else {
+            return Ok(stack.is_empty());
+        };
+        self.leave(prog, &f).map_err(|e| match f.module {
+            Some(m) => self.module_error(prog, m, e),
+            None => self.error(prog, None, e),
+        })?;
+        if stack.is_empty() {
+            return Ok(true);
+        }
+        propagate(stack, f.acted);
+        Ok(false)
+    }
+
+    /// Enters module `module` with `args`, called by the combo `c` of a rule with condition
+    /// `cond`. Out of line, as [`Core::exit_frame`].
+    #[inline(never)]
+    fn call(
+        &mut self,
+        prog: &Program,
+        c: &ComboFrame,
+        (module, args): (usize, &[Term]),
+        cond: &[super::program::Lit],
+    ) -> Result<ModFrame, Fault> {
+        self.enter(prog, module, args, Some((&c.answer.subst, &c.answer, cond)))
     }
 
     /// Leaves every frame of `stack` from the top (a task stopped from outside): named modules
