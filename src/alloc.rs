@@ -7,8 +7,17 @@
 //! resident, where mimalloc's copying `realloc` peaks at 3N (the old block is still resident
 //! while the new one fills). Which allocator owns a block follows from its size alone, so `dealloc`
 //! and `realloc` always reach the allocator that made the block.
+//!
+//! Small blocks are asked of mimalloc with its plain `mi_malloc` when their alignment is at most
+//! a word's (nearly every block): every mimalloc block is word-aligned, and the aligned entry
+//! point the `mimalloc` crate calls for every block takes a slow path whenever its size class's
+//! free list is empty, one that for a size that is not a power of two allocates a larger block
+//! from another size class (so the first class's free list is never refilled, and that size
+//! takes the slow path from then on).
 
+use libmimalloc_sys as mi;
 use std::alloc::{GlobalAlloc, Layout, System};
+use std::ffi::c_void;
 
 /// Blocks of this many bytes or more come from the system allocator.
 pub const LARGE: usize = 256 * 1024;
@@ -20,11 +29,18 @@ fn large(size: usize) -> bool {
     size >= LARGE
 }
 
+/// True when any mimalloc block meets `align`: every block is aligned to a word.
+fn word_aligned(align: usize) -> bool {
+    align <= std::mem::size_of::<usize>()
+}
+
 unsafe impl GlobalAlloc for Hybrid {
     #[inline]
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         if large(layout.size()) {
             System.alloc(layout)
+        } else if word_aligned(layout.align()) {
+            mi::mi_malloc(layout.size()) as *mut u8
         } else {
             mimalloc::MiMalloc.alloc(layout)
         }
@@ -34,6 +50,8 @@ unsafe impl GlobalAlloc for Hybrid {
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
         if large(layout.size()) {
             System.alloc_zeroed(layout)
+        } else if word_aligned(layout.align()) {
+            mi::mi_zalloc(layout.size()) as *mut u8
         } else {
             mimalloc::MiMalloc.alloc_zeroed(layout)
         }
@@ -51,6 +69,9 @@ unsafe impl GlobalAlloc for Hybrid {
     #[inline]
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
         match (large(layout.size()), large(new_size)) {
+            (false, false) if word_aligned(layout.align()) => {
+                mi::mi_realloc(ptr as *mut c_void, new_size) as *mut u8
+            }
             (false, false) => mimalloc::MiMalloc.realloc(ptr, layout, new_size),
             (true, true) => System.realloc(ptr, layout, new_size),
             // Crossing the line: the block changes owner, so move it by hand.
