@@ -376,7 +376,8 @@ fn run_one_into(
     // through the run loop.
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         a.set_clock(clock);
-        a.step_into(&percepts, &messages, out)
+        a.step_into(&percepts, &messages, out);
+        a.keep_buffer(messages, out);
     }))
     .map_err(|_| PoolError(format!("agent {i} panicked")))
 }
