@@ -578,6 +578,28 @@ mod tests {
     }
 
     #[test]
+    fn an_agent_keeps_its_emptied_inbox_for_its_next_outgoing_messages() {
+        let agents: Vec<Mutex<Agent>> = agents(1).into_iter().map(Mutex::new).collect();
+        let mut inbox = Vec::with_capacity(4);
+        inbox.push(Message {
+            sender: crate::term::Sym::intern("a00"),
+            receiver: crate::term::Sym::intern("a00"),
+            content: Term::atom("hi"),
+        });
+        let mut out = CycleOutput::default();
+        run_one_into(&agents, None, (0, Vec::new(), inbox), &mut out).expect("cycle");
+        // The next cycle sends nothing: its output carries the kept buffer, and a run of it
+        // through the pool hands the buffer back to the agent.
+        let mut a = agents[0].lock().expect("agent");
+        let mut next = CycleOutput::default();
+        a.step_into(&[], &[], &mut next);
+        assert!(next.messages.is_empty());
+        assert_eq!(next.messages.capacity(), 4);
+        a.keep_buffer(Vec::new(), &mut next);
+        assert_eq!(next.messages.capacity(), 0);
+    }
+
+    #[test]
     fn a_round_shared_between_threads_gives_what_one_thread_gives() {
         let n = 23;
         let alone = Pool::new(agents(n), 1).expect("pool");
