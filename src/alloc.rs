@@ -94,7 +94,7 @@ mod tests {
     fn every_block_has_its_alignment_and_keeps_its_bytes() {
         // The plain entry points serve alignments up to a word, the aligned ones the rest:
         // each block must be aligned, zeroed when asked, and keep its bytes when it grows.
-        for align in [1, 2, 4, 8, 16, 32, 64] {
+        for align in [1, 2, 4, 8, 16, 32, 64, 4096] {
             for size in (1..=200).chain([1000, 5000]) {
                 let layout = Layout::from_size_align(size, align).expect("layout");
                 unsafe {

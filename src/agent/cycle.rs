@@ -112,6 +112,9 @@ pub struct AgentConfig {
     pub kr: KrKind,
 }
 
+/// Most messages a buffer kept for the next cycle's outgoing messages may have room for.
+const KEPT_INBOX_ROOM: usize = 16;
+
 /// Default of [`AgentConfig::cycle_time`].
 pub const DEFAULT_CYCLE_TIME: Duration = Duration::from_secs(10);
 /// Default of [`AgentConfig::max_beliefs`].
@@ -571,6 +574,24 @@ impl Agent {
         let due = self.core.timing.due(now);
         let batch = (!due.is_empty()).then(|| [percepts, &due].concat());
         Some((batch, held))
+    }
+
+    /// Keeps a buffer for the next cycle's outgoing messages, after a step that gave `out`
+    /// and read `inbox`: the output's own buffer when it sent nothing, else the emptied inbox
+    /// (the run loop makes each outgoing buffer a receiver's inbox), so an agent passing a
+    /// message on allocates no buffer for it. Only a small buffer is kept (not a broadcast's).
+    pub fn keep_buffer(&mut self, mut inbox: Vec<Message>, out: &mut CycleOutput) {
+        let mine = &mut self.core.out.messages;
+        if mine.capacity() != 0 {
+            return;
+        }
+        let small = |v: &Vec<Message>| (1..=KEPT_INBOX_ROOM).contains(&v.capacity());
+        if out.messages.is_empty() && small(&out.messages) {
+            std::mem::swap(mine, &mut out.messages);
+        } else if small(&inbox) {
+            inbox.clear();
+            *mine = inbox;
+        }
     }
 
     /// Runs the shutdown module (modular GOAL) once, as the agent's last cycle, because the

@@ -100,25 +100,32 @@ fn message_content(mood: Mood, content: &Term, s: &Subst) -> Result<Term, Fault>
 /// that content validation may reject. Unchanged arguments are shared, as `Subst::apply` does.
 fn atomic_instance(s: &Subst, t: &Term, depth: u32, suspect: &mut bool) -> Option<(Term, bool)> {
     match t {
-        Term::Var(_) => match s.walk(t) {
-            Term::Var(_) | Term::Compound(_) => None,
-            v => Some((v.clone(), true)),
-        },
+        Term::Var(_) => Some((atomic_value(s, t)?, true)),
         Term::Compound(_) if depth == 0 => None,
         Term::Compound(c) => {
             *suspect |= crate::clamr::content::may_reject(c.name);
             let mut args: Option<Vec<Term>> = None;
             for (i, a) in c.args.iter().enumerate() {
-                let (x, changed) = atomic_instance(s, a, depth - 1, suspect)?;
-                match args.as_mut() {
-                    Some(v) => v.push(x),
-                    None if !changed => {}
-                    None => {
+                // The argument's instance when it differs from the argument. Leaves are taken
+                // here, without a call per argument (a message's arguments are mostly leaves).
+                let x = match a {
+                    Term::Var(_) => Some(atomic_value(s, a)?),
+                    Term::Compound(_) => match atomic_instance(s, a, depth - 1, suspect)? {
+                        (x, true) => Some(x),
+                        (_, false) => None,
+                    },
+                    _ => None,
+                };
+                match (x, args.as_mut()) {
+                    (Some(x), Some(v)) => v.push(x),
+                    (None, Some(v)) => v.push(a.clone()),
+                    (Some(x), None) => {
                         let mut v = Vec::with_capacity(c.args.len());
                         v.extend(c.args[..i].iter().cloned());
                         v.push(x);
                         args = Some(v);
                     }
+                    (None, None) => {}
                 }
             }
             Some(match args {
@@ -127,6 +134,14 @@ fn atomic_instance(s: &Subst, t: &Term, depth: u32, suspect: &mut bool) -> Optio
             })
         }
         other => Some((other.clone(), false)),
+    }
+}
+
+/// The value of variable `v` under `s` when it is bound to an atomic term; `None` otherwise.
+fn atomic_value(s: &Subst, v: &Term) -> Option<Term> {
+    match s.walk(v) {
+        Term::Var(_) | Term::Compound(_) => None,
+        x => Some(x.clone()),
     }
 }
 

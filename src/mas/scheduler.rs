@@ -376,7 +376,8 @@ fn run_one_into(
     // through the run loop.
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         a.set_clock(clock);
-        a.step_into(&percepts, &messages, out)
+        a.step_into(&percepts, &messages, out);
+        a.keep_buffer(messages, out);
     }))
     .map_err(|_| PoolError(format!("agent {i} panicked")))
 }
@@ -574,6 +575,28 @@ mod tests {
             assert_eq!(out.printed.len(), 1, "{:?}", out.printed);
             assert_eq!(out.actions, want.actions);
         }
+    }
+
+    #[test]
+    fn an_agent_keeps_its_emptied_inbox_for_its_next_outgoing_messages() {
+        let agents: Vec<Mutex<Agent>> = agents(1).into_iter().map(Mutex::new).collect();
+        let mut inbox = Vec::with_capacity(4);
+        inbox.push(Message {
+            sender: crate::term::Sym::intern("a00"),
+            receiver: crate::term::Sym::intern("a00"),
+            content: Term::atom("hi"),
+        });
+        let mut out = CycleOutput::default();
+        run_one_into(&agents, None, (0, Vec::new(), inbox), &mut out).expect("cycle");
+        // The next cycle sends nothing: its output carries the kept buffer, and a run of it
+        // through the pool hands the buffer back to the agent.
+        let mut a = agents[0].lock().expect("agent");
+        let mut next = CycleOutput::default();
+        a.step_into(&[], &[], &mut next);
+        assert!(next.messages.is_empty());
+        assert_eq!(next.messages.capacity(), 4);
+        a.keep_buffer(Vec::new(), &mut next);
+        assert_eq!(next.messages.capacity(), 0);
     }
 
     #[test]

@@ -43,7 +43,11 @@ pub struct Compound {
 
 impl Drop for Compound {
     fn drop(&mut self) {
-        if !self.args.iter().any(unique) {
+        // Without an argument that is a unique compound holding unique compounds in turn, the
+        // arguments are dropped in place: a unique compound argument's own drop then finds no
+        // unique compound among its arguments and returns here, so this recurses one level at
+        // most (a message `imp(token(T, K))` is freed without the work stack's bookkeeping).
+        if !self.args.iter().any(holds_unique) {
             return;
         }
         // Argument lists whose uniquely owned compounds own compounds in turn wait on a heap
@@ -60,6 +64,11 @@ impl Drop for Compound {
 /// True for a compound term nothing else shares (dropping it frees it).
 fn unique(t: &Term) -> bool {
     matches!(t, Term::Compound(c) if Arc::strong_count(c) == 1)
+}
+
+/// True for a compound term nothing else shares that holds such a compound itself.
+fn holds_unique(t: &Term) -> bool {
+    matches!(t, Term::Compound(c) if Arc::strong_count(c) == 1 && c.args.iter().any(unique))
 }
 
 /// Drops `args`, setting aside the argument lists of unique sub-terms that hold unique
@@ -683,6 +692,22 @@ mod tests {
             deep = Term::compound("f", vec![deep, Term::list([Term::Int(i)])]);
         }
         drop(deep);
+        // One-argument nesting, and nesting whose every other level is shared elsewhere (each
+        // drop then meets a unique compound holding a unique compound a level further down).
+        let mut unary = Term::atom("z");
+        for _ in 0..1_000_000 {
+            unary = Term::compound("g", vec![unary]);
+        }
+        drop(unary);
+        let (mut mixed, mut kept) = (Term::atom("z"), Vec::new());
+        for i in 0..1_000_000 {
+            mixed = Term::compound("h", vec![mixed, Term::Int(i)]);
+            if i % 2 == 0 {
+                kept.push(mixed.clone());
+            }
+        }
+        drop(mixed);
+        drop(kept);
     }
 
     #[test]
