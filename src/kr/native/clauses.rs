@@ -369,12 +369,8 @@ impl<'a, 'm> Solver<'a, 'm> {
         m.slots.clear();
         m.slots.resize(cl.nslots as usize, UNSET);
         if let Cell::Ptr(off) = cl.head {
-            let (off, n) = (off as usize + 1, pred.arity as usize);
-            for (i, &c) in cl.code.cells[off..off + n].iter().enumerate() {
-                let h = Self::arg(m, args, i);
-                if !cl.code.unify_arg(&mut m.st, c, h, &mut m.slots) {
-                    return false;
-                }
+            if !match_head(m, &cl.code, off, pred.arity, args) {
+                return false;
             }
         }
         let direct = match cl.preds.first() {
@@ -413,6 +409,41 @@ impl<'a, 'm> Solver<'a, 'm> {
     }
 }
 
+/// Unifies the arguments of the compiled head at `off` (a structure of `arity` arguments)
+/// with the call's arguments at `args`, binding the clause's slots. One loop per place the
+/// arguments lie in, over the machine's parts borrowed apart: no per-argument test of where
+/// they lie, and the registers are read without a bounds check (they are not written here).
+#[inline(always)]
+fn match_head(m: &mut Machine, code: &Code, off: u32, arity: u32, args: Args) -> bool {
+    let (off, n) = (off as usize + 1, arity as usize);
+    let head = &code.cells[off..off + n];
+    let Machine {
+        st, slots, regs, ..
+    } = m;
+    match args {
+        Args::Regs => {
+            debug_assert!(
+                n <= MAX_REGS,
+                "register calls have at most MAX_REGS arguments"
+            );
+            for (&c, &h) in head.iter().zip(&regs.0) {
+                if !code.unify_arg(st, c, h, slots) {
+                    return false;
+                }
+            }
+        }
+        Args::Heap(a) => {
+            for (&c, i) in head.iter().zip(a as usize..) {
+                let h = st.heap[i];
+                if !code.unify_arg(st, c, h, slots) {
+                    return false;
+                }
+            }
+        }
+    }
+    true
+}
+
 /// Places the arguments of the compiled goal `goal` for a call: in the argument registers
 /// when `flat` gives their cells (none is a structure and they fit; fresh variables are made
 /// in the order a block copy would make them), else built as a block on the heap.
@@ -426,22 +457,25 @@ fn place_args(m: &mut Machine, code: &Code, goal: Cell, flat: Option<(u32, u32)>
         cells.len() <= MAX_REGS,
         "checked when the clause was loaded"
     );
-    for (r, &c) in m.regs.0.iter_mut().zip(cells) {
+    let Machine {
+        st, slots, regs, ..
+    } = m;
+    for (r, &c) in regs.0.iter_mut().zip(cells) {
         *r = match c {
-            Cell::Ref(k) if (k as usize) < m.slots.len() => {
+            Cell::Ref(k) if (k as usize) < slots.len() => {
                 // By value: a copy made field by field and read back whole stalls the
                 // store-to-load forwarding.
-                let v = m.slots[k as usize];
+                let v = slots[k as usize];
                 if let Cell::Ref(u32::MAX) = v {
-                    let v = m.st.new_var();
-                    m.slots[k as usize] = v;
+                    let v = st.new_var();
+                    slots[k as usize] = v;
                     v
                 } else {
                     v
                 }
             }
             Cell::Atom(_) | Cell::Int(_) | Cell::Flt(_) => c,
-            _ => code.build(&mut m.st, c, &mut m.slots),
+            _ => code.build(st, c, slots),
         };
     }
     Args::Regs

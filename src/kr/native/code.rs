@@ -260,6 +260,12 @@ impl Code {
     /// a block is a few cells, for which a copy call and a second pass cost more than the work.
     #[inline]
     fn copy_cells(&self, store: &mut Store, from: u32, end: u32, slots: &mut [Cell]) -> u32 {
+        self.copy_block(store, from, end, slots)
+    }
+
+    /// [`Code::copy_cells`], inlined where it is called.
+    #[inline(always)]
+    fn copy_block(&self, store: &mut Store, from: u32, end: u32, slots: &mut [Cell]) -> u32 {
         let Store { heap, strs, .. } = store;
         let base = heap.len() as u32;
         let src = &self.cells[from as usize..end as usize];
@@ -345,7 +351,11 @@ impl Code {
                     true
                 }
                 Cell::Ref(a) => {
-                    let t = Cell::Ptr(self.build_block(store, off, slots));
+                    // The block is copied inline: here it is a head's structure met by an
+                    // unbound argument (an output list cell), a few cells for which the call
+                    // costs as much as the copy.
+                    let end = self.ends[off as usize];
+                    let t = Cell::Ptr(self.copy_block(store, off, end, slots));
                     if store.occurs_check && store.occurs(a, t) {
                         return false;
                     }
