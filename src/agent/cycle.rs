@@ -5,7 +5,7 @@
 use super::directory::Directory;
 use super::error::{Fault, RuntimeError};
 use super::kr_bridge::{AgentEngine, KrKind, Limits};
-use super::mailbox::Message;
+use super::mailbox::{reusable, Message};
 use super::mental_state::MentalState;
 use super::module::{Frame, ModFrame, RunEnd};
 use super::percepts::PerceptTypes;
@@ -111,9 +111,6 @@ pub struct AgentConfig {
     /// The KR engine answering the agent's queries.
     pub kr: KrKind,
 }
-
-/// Most messages a buffer kept for the next cycle's outgoing messages may have room for.
-const KEPT_INBOX_ROOM: usize = 16;
 
 /// Default of [`AgentConfig::cycle_time`].
 pub const DEFAULT_CYCLE_TIME: Duration = Duration::from_secs(10);
@@ -585,10 +582,9 @@ impl Agent {
         if mine.capacity() != 0 {
             return;
         }
-        let small = |v: &Vec<Message>| (1..=KEPT_INBOX_ROOM).contains(&v.capacity());
-        if out.messages.is_empty() && small(&out.messages) {
+        if out.messages.is_empty() && reusable(&out.messages) {
             std::mem::swap(mine, &mut out.messages);
-        } else if small(&inbox) {
+        } else if reusable(&inbox) {
             inbox.clear();
             *mine = inbox;
         }

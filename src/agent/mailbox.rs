@@ -98,6 +98,16 @@ fn held_under(s: &Subst, pattern: &Term, (r, c): &(Sym, Term)) -> bool {
         && same_under(s, &pattern.args()[1], c)
 }
 
+/// Most messages a message buffer kept for reuse may have room for: the buffers of messages
+/// passed on circulate (an agent's outgoing buffer becomes a receiver's inbox, an emptied inbox
+/// the agent's next outgoing buffer), and a larger one (a broadcast's) is freed instead.
+const REUSED_ROOM: usize = 16;
+
+/// True when `buffer` is worth keeping for reuse: it has room, and not a broadcast's.
+pub fn reusable(buffer: &Vec<Message>) -> bool {
+    (1..=REUSED_ROOM).contains(&buffer.capacity())
+}
+
 /// A message from one agent to one receiver; `content` already carries the mood wrapper
 /// (`p`, `imp(p)` or `int(p)`). Agents are named by their interned names: routing a message
 /// compares and looks up symbols, and the text is read only where a name is shown.

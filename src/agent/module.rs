@@ -380,8 +380,10 @@ impl Core {
                             exit_module(stack);
                         }
                         Act::Module { module, args } => {
+                            // The combo frame is lent, not cloned (`stack` is not `self`'s).
+                            let answer = Some((&c.answer.subst, &c.answer, &rule.cond[..]));
                             let f = self
-                                .call(prog, c, (*module, args), &rule.cond)
+                                .enter(prog, *module, args, answer)
                                 .map_err(|e| self.error(prog, loc, e))?;
                             stack.push(Frame::Module(f));
                         }
@@ -439,19 +441,6 @@ impl Core {
         }
         propagate(stack, f.acted);
         Ok(false)
-    }
-
-    /// Enters module `module` with `args`, called by the combo `c` of a rule with condition
-    /// `cond`. Out of line, as [`Core::exit_frame`].
-    #[inline(never)]
-    fn call(
-        &mut self,
-        prog: &Program,
-        c: &ComboFrame,
-        (module, args): (usize, &[Term]),
-        cond: &[super::program::Lit],
-    ) -> Result<ModFrame, Fault> {
-        self.enter(prog, module, args, Some((&c.answer.subst, &c.answer, cond)))
     }
 
     /// Leaves every frame of `stack` from the top (a task stopped from outside): named modules

@@ -17,6 +17,7 @@ use super::trace::{AgentInfo, TraceWriter};
 // The run's options and observer are part of its interface.
 pub use super::observer::{Observer, Progress, Quiet};
 pub use super::options::{RunOptions, DEFAULT_MAX_MAILBOX, DEFAULT_MAX_MEMORY, TICK_SECONDS};
+use crate::agent::mailbox::reusable;
 use crate::agent::{
     Agent, AgentConfig, CycleOutput, Directory, Event, Message, RuntimeError, StopReason,
     TraceLevel,
@@ -33,10 +34,6 @@ use std::time::{Duration, Instant};
 
 /// Most emptied outgoing-message buffers the run loop keeps for inboxes.
 const SPARE_BUFFERS: usize = 64;
-
-/// Most messages a kept buffer may have room for: a larger one (a broadcast's) is freed, so
-/// that the inboxes' buffers stay small.
-const REUSED_ROOM: usize = 16;
 
 /// How often the resident memory is checked against the cap.
 const MEMORY_CHECK_EVERY: Duration = Duration::from_millis(20);
@@ -317,8 +314,7 @@ impl<'a> Setup<'a> {
                 s.stats.messages_sent += out.messages.len() as u64;
                 let mut outgoing = out.messages;
                 sent.append(&mut outgoing);
-                if (1..=REUSED_ROOM).contains(&outgoing.capacity()) && buffers.len() < SPARE_BUFFERS
-                {
+                if reusable(&outgoing) && buffers.len() < SPARE_BUFFERS {
                     buffers.push(outgoing);
                 }
                 match out.stopped {
