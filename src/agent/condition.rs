@@ -5,11 +5,9 @@ use super::error::Fault;
 use super::goals::Goal;
 use super::mental_state::{GoalQuery, MentalState};
 use super::program::Lit;
-use crate::kr::fxhash::{FxHashMap, FxHasher};
 use crate::syntax::ast::MentalOp;
 use crate::term::{well_known as wk, Subst, Sym, Term};
 use smallvec::{smallvec, SmallVec};
-use std::hash::{Hash, Hasher};
 use std::sync::Arc;
 
 /// Extends `base` with the bindings of `answer`.
@@ -20,88 +18,9 @@ pub fn compose(base: &Subst, answer: &Subst) -> Subst {
 /// The answers of a literal or a condition: mostly none or one, kept inline.
 pub type Found = super::conjunction::Answers;
 
-/// An insertion-ordered set of answers: while small, each answer is compared with the others
-/// directly; beyond that its hash is compared first (a linear scan of hashes, then a hash
-/// index), the bindings only when hashes are equal.
-#[derive(Default)]
-struct AnswerSet {
-    items: Found,
-    /// The hashes of the items, made once the set outgrows direct comparison.
-    hashed: Option<Box<Hashed>>,
-}
+mod answer_set;
 
-/// The hashes of an [`AnswerSet`]'s items, and an index of them once the set is large.
-#[derive(Default)]
-struct Hashed {
-    /// The hashes of the first items (computed when a membership test needs them).
-    hashes: Vec<u64>,
-    index: FxHashMap<u64, SmallVec<[usize; 1]>>,
-    /// How many of `items` the index covers.
-    indexed: usize,
-}
-
-/// Up to this many answers a new one is compared with each directly (no hashing).
-const COMPARE_UPTO: usize = 8;
-const HASH_FROM: usize = 32;
-
-/// A hash of the bindings of `s` that does not depend on their order.
-fn hash_of(s: &Subst) -> u64 {
-    s.iter().fold(0u64, |acc, binding| {
-        let mut h = FxHasher::default();
-        binding.hash(&mut h);
-        acc.wrapping_add(h.finish())
-    })
-}
-
-/// True when `a` and `b` bind the same variables to the same terms, in whatever order: the
-/// same answer reached through literals that bound its variables in another order.
-fn same_answer(a: &Subst, b: &Subst) -> bool {
-    a.len() == b.len() && a.iter().all(|(v, t)| b.get(v) == Some(t))
-}
-
-impl AnswerSet {
-    /// Adds `s` unless present.
-    fn push(&mut self, s: Subst) {
-        let items = &mut self.items;
-        if items.len() < COMPARE_UPTO {
-            if !items.iter().any(|i| same_answer(i, &s)) {
-                items.push(s);
-            }
-            return;
-        }
-        let hs = self.hashed.get_or_insert_with(Box::default);
-        while hs.hashes.len() < items.len() {
-            hs.hashes.push(hash_of(&items[hs.hashes.len()]));
-        }
-        let h = hash_of(&s);
-        if items.len() < HASH_FROM {
-            let mut same = hs.hashes.iter().zip(items.iter());
-            if !same.any(|(&hi, i)| hi == h && same_answer(i, &s)) {
-                hs.hashes.push(h);
-                items.push(s);
-            }
-            return;
-        }
-        while hs.indexed < items.len() {
-            let hi = hs.hashes[hs.indexed];
-            hs.index.entry(hi).or_default().push(hs.indexed);
-            hs.indexed += 1;
-        }
-        let slot = hs.index.entry(h).or_default();
-        if slot.iter().any(|&i| same_answer(&items[i], &s)) {
-            return;
-        }
-        slot.push(items.len());
-        hs.indexed += 1;
-        hs.hashes.push(h);
-        items.push(s);
-    }
-
-    /// Adds `s`, known to differ from every answer present.
-    fn push_new(&mut self, s: Subst) {
-        self.items.push(s);
-    }
-}
+use answer_set::AnswerSet;
 
 /// Evaluation context of a condition.
 pub struct CondCtx<'a> {
@@ -439,19 +358,8 @@ fn literal(
             }
         }
         (MentalOp::Bel, None) => {
-            let planned = plan
-                .get(query, &ms.knowledge)
-                .and_then(|p| p.answers(ms, theta, cap));
-            let (found, stopped) = match planned {
-                Some(r) => r,
-                None => {
-                    let (found, stopped) = ms.bel_upto_in(query, theta, cap)?;
-                    (Found::from_vec(found), stopped)
-                }
-            };
+            let (found, stopped) = bel_answers(ms, query, plan, theta, cap)?;
             *cut |= stopped;
-            let mut found = found;
-            distinct(&mut found);
             // Returned at once: no empty answer set to replace and drop.
             return Ok(finish_found(*negated, found));
         }
@@ -537,6 +445,64 @@ fn literal(
         }
     }
     Ok(finish(*negated, raw))
+}
+
+/// The distinct answers of the belief query `query` (planned in `plan`) under `theta`, at most
+/// `cap`, and whether a query stopped there: the plan's when it decides, else the engine's.
+#[inline(always)]
+fn bel_answers(
+    ms: &MentalState,
+    query: &Term,
+    plan: &super::conjunction::PlanCell,
+    theta: &Subst,
+    cap: usize,
+) -> Result<(Found, bool), Fault> {
+    let planned = plan
+        .get(query, &ms.knowledge)
+        .and_then(|p| p.answers(ms, theta, cap));
+    let (mut found, stopped) = match planned {
+        Some(r) => r,
+        None => {
+            let (found, stopped) = ms.bel_upto_in(query, theta, cap)?;
+            (Found::from_vec(found), stopped)
+        }
+    };
+    distinct(&mut found);
+    Ok((found, stopped))
+}
+
+/// [`evaluate`]'s answers and whether `cap` cut them, without the literal that failed (what a
+/// rule runs for while `goal why` does not record). A condition of one positive `bel` literal
+/// about this agent under the empty substitution is answered by its query at once: exactly
+/// what [`evaluate_one`] makes of [`literal`]'s answers for it (the same query, distinct
+/// answers, the first `cap`), with no evaluation record made and taken apart.
+pub fn answers_upto(
+    cx: &CondCtx<'_>,
+    lits: &[Lit],
+    base: &Subst,
+    cap: usize,
+) -> Result<(Found, bool), Fault> {
+    if let (
+        [Lit::Mental {
+            negated: false,
+            about: None,
+            op: MentalOp::Bel,
+            query,
+            plan,
+            ..
+        }],
+        true,
+    ) = (lits, base.is_empty())
+    {
+        let (mut found, cut) = bel_answers(cx.ms, query, plan, base, cap)?;
+        if found.len() > cap {
+            found.truncate(cap);
+            return Ok((found, true));
+        }
+        return Ok((found, cut));
+    }
+    let e = evaluate(cx, lits, base, cap)?;
+    Ok((e.answers, e.cut))
 }
 
 /// A literal's answers from the answers of its query: for a negated literal, one empty answer
@@ -731,6 +697,39 @@ mod tests {
                 (skip, e.map(|e| e.answers.len()).map_err(|f| f.message))
             })
             .collect()
+    }
+
+    #[test]
+    fn answers_upto_answers_as_the_evaluation() {
+        // Planned (with repeated answers), engine-answered, negated, goal and two-literal
+        // conditions, under each cap: the answers and the cut flag are the evaluation's.
+        let prog = Program::from_source(
+            "t.goal",
+            "init module { knowledge { k(X) :- f(X). } beliefs { f(1). f(2). f(3). g(a). g(b). }
+               goals { h(1). } }
+             main module { program {
+                if bel(f(X), g(_)) then print(X).
+                if bel(k(X)) then print(X).
+                if not(bel(f(9))) then print(no).
+                if a-goal(h(X)) then print(X).
+                if bel(f(X)), bel(g(Y)) then print(X).
+             } }",
+        )
+        .expect("compiles");
+        let mut a = Agent::new(prog.clone(), "a", AgentConfig::default());
+        a.step(&[], &[]);
+        let cx = CondCtx {
+            ms: a.mental_state(),
+            only: None,
+        };
+        let theta = Subst::new();
+        for rule in &prog.blocks[prog.modules[prog.main].block].rules {
+            for cap in [1, 2, 3, 4, usize::MAX] {
+                let e = evaluate(&cx, &rule.cond, &theta, cap).expect("evaluates");
+                let fast = answers_upto(&cx, &rule.cond, &theta, cap).expect("answers");
+                assert_eq!(fast, (e.answers, e.cut), "{} cap {cap}", rule.label);
+            }
+        }
     }
 
     #[test]

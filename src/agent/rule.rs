@@ -1,7 +1,7 @@
 //! Rule kinds: computing the answers a rule body runs for (`if`: shuffled, one acting answer;
 //! `forall`: all answers computed up front; `listall`: one answer binding the list).
 
-use super::condition::{evaluate, first_lookup_fails, show_subst, CondCtx, Found};
+use super::condition::{answers_upto, evaluate, first_lookup_fails, show_subst, CondCtx, Found};
 use super::cycle::Core;
 use super::error::Fault;
 use super::goals::Goal;
@@ -84,12 +84,16 @@ impl Core {
                 ms: &self.ms,
                 only: None,
             };
-            let e = evaluate(&cx, &rule.cond, base, cap)?;
+            let found;
             if self.why.is_some() {
+                let e = evaluate(&cx, &rule.cond, base, cap)?;
                 self.why_condition(&rule.cond, &e);
+                (found, cut) = (e.answers, e.cut);
+            } else {
+                // Where the condition failed is recorded for `goal why` alone.
+                (found, cut) = answers_upto(&cx, &rule.cond, base, cap)?;
             }
-            cut = e.cut;
-            answers = answers_of(e.answers);
+            answers = answers_of(found);
         }
         if cut {
             self.warn_truncated(rule, file);
