@@ -314,14 +314,21 @@ impl Core {
                         }
                         continue;
                     }
-                    // Each answer is used once: move it out instead of cloning.
-                    let answer = std::mem::replace(
-                        &mut r.answers[r.next],
-                        Answer {
-                            subst: Subst::new(),
-                            goals: Vec::new(),
-                        },
-                    );
+                    // Each answer is used once: move it out instead of cloning (the last one
+                    // popped: no placeholder left to drop with the frame).
+                    let answer = match r.next + 1 == r.answers.len() {
+                        true => r.answers.pop(),
+                        false => None,
+                    };
+                    let answer = answer.unwrap_or_else(|| {
+                        std::mem::replace(
+                            &mut r.answers[r.next],
+                            Answer {
+                                subst: Subst::new(),
+                                goals: Vec::new(),
+                            },
+                        )
+                    });
                     r.next += 1;
                     let (b, ri) = (r.block, r.rule);
                     self.fired(rule, &answer.subst);
@@ -652,6 +659,20 @@ mod tests {
              main module { program { if true then print(main). } }",
         );
         assert_eq!(out.first().map(String::as_str), Some("got"), "{out:?}");
+    }
+
+    #[test]
+    fn a_forall_rule_runs_its_body_for_each_answer_in_order() {
+        // Answers are moved out of the rule frame one by one, the last one popped: the body
+        // still runs for each answer once, in the condition's order.
+        let out = first_cycle_prints(
+            "init module { beliefs { f(1). f(2). f(3). } program [order=linearall] {
+                forall bel(f(X)) do print(X).
+                if bel(f(1)) then print(last).
+             } }
+             main module { program { if true then print(main). } }",
+        );
+        assert_eq!(out, ["1", "2", "3", "last", "main"]);
     }
 
     #[test]

@@ -283,13 +283,17 @@ impl<'a> Run<'a, '_> {
         }
     }
 
-    /// [`Run::eval`] with a leaf (an integer, a variable) read in place: most sides of a
-    /// comparison or `is/2` are one.
+    /// [`Run::eval`] with a leaf (an integer, a variable) or a variable and an integer under
+    /// an operator (`K - 1`) evaluated in place: most sides of a comparison or `is/2` are one.
     #[inline(always)]
     fn value(&self, e: &Expr) -> Result<i64, Halt> {
         match e {
             Expr::Int(i) => Ok(*i),
             Expr::Reg(k) => self.vals[*k].and_then(Val::int).ok_or(Halt::Bail),
+            Expr::RegInt(op, k, y) => {
+                let x = self.vals[*k].and_then(Val::int).ok_or(Halt::Bail)?;
+                apply(*op, x, *y).ok_or(Halt::Bail)
+            }
             _ => self.eval(e),
         }
     }
