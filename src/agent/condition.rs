@@ -676,13 +676,19 @@ mod tests {
     use crate::agent::cycle::{Agent, AgentConfig};
     use crate::agent::program::Program;
 
+    /// The program of `src` and its agent after one cycle.
+    fn after_one_cycle(src: &str) -> (Arc<Program>, Agent) {
+        let prog = Program::from_source("t.goal", src).expect("compiles");
+        let mut a = Agent::new(prog.clone(), "a", AgentConfig::default());
+        a.step(&[], &[]);
+        (prog, a)
+    }
+
     /// For each rule of the main module of `src` after one cycle (in which the first rule
     /// applies, so the others do not run): whether its evaluation is skipped, and what
     /// evaluating it gives (answers or error).
     fn skipped_and_evaluated(src: &str) -> Vec<(bool, Result<usize, String>)> {
-        let prog = Program::from_source("t.goal", src).expect("compiles");
-        let mut a = Agent::new(prog.clone(), "a", AgentConfig::default());
-        a.step(&[], &[]);
+        let (prog, a) = after_one_cycle(src);
         assert!(a.stopped().is_none(), "{:?}", a.stopped());
         let ms = a.mental_state();
         let block = prog.modules[prog.main].block;
@@ -703,8 +709,7 @@ mod tests {
     fn answers_upto_answers_as_the_evaluation() {
         // Planned (with repeated answers), engine-answered, negated, goal and two-literal
         // conditions, under each cap: the answers and the cut flag are the evaluation's.
-        let prog = Program::from_source(
-            "t.goal",
+        let (prog, a) = after_one_cycle(
             "init module { knowledge { k(X) :- f(X). } beliefs { f(1). f(2). f(3). g(a). g(b). }
                goals { h(1). } }
              main module { program {
@@ -714,10 +719,7 @@ mod tests {
                 if a-goal(h(X)) then print(X).
                 if bel(f(X)), bel(g(Y)) then print(X).
              } }",
-        )
-        .expect("compiles");
-        let mut a = Agent::new(prog.clone(), "a", AgentConfig::default());
-        a.step(&[], &[]);
+        );
         let cx = CondCtx {
             ms: a.mental_state(),
             only: None,
@@ -734,8 +736,7 @@ mod tests {
 
     #[test]
     fn a_condition_of_one_literal_answers_as_the_general_evaluation() {
-        let prog = Program::from_source(
-            "t.goal",
+        let (prog, a) = after_one_cycle(
             "init module { beliefs { f(1). f(2). f(3). } }
              main module { program {
                 if bel(f(X)) then print(X).
@@ -743,10 +744,7 @@ mod tests {
                 if bel(g(X)) then print(X).
                 if bel(g(X)), bel(true) then print(X).
              } }",
-        )
-        .expect("compiles");
-        let mut a = Agent::new(prog.clone(), "a", AgentConfig::default());
-        a.step(&[], &[]);
+        );
         let cx = CondCtx {
             ms: a.mental_state(),
             only: None,
