@@ -6,7 +6,7 @@ use super::condition::show_subst;
 use super::cycle::Core;
 use super::error::Fault;
 use super::mailbox::{received, sent, Message};
-use super::program::Receivers;
+use super::program::{Act, ActionDef, Receivers};
 use super::timing::CHANNEL;
 use super::trace::{Event, TraceLevel};
 use crate::syntax::ast::Mood;
@@ -145,6 +145,47 @@ fn atomic_value(s: &Subst, v: &Term) -> Option<Term> {
     }
 }
 
+/// True when the `sent/2` fact this send held (if it held one) is, under `s`, the instance of
+/// `sent(R, M)` for its one receiver term `R` and its mood-wrapped content pattern `M` (the form
+/// [`link_sent_deletes`] looks for): `R` stands for one atom (not a list, not `[]`), so the
+/// send had at most that one receiver, and the content is ground, as a `delete`'s match needs.
+fn names_its_sent_fact(to: &Receivers, s: &Subst, mood: Mood, wrapped: &Term) -> bool {
+    let one = matches!(to, Receivers::Agents(ts) if ts.len() == 1
+        && matches!(s.walk(&ts[0]), Term::Atom(a) if *a != wk::NIL));
+    // Only a question may be sent with variables (`message_content`).
+    one && (mood != Mood::Interrogative || wrapped.is_ground())
+}
+
+/// Links each `delete` of a combo whose pattern is, by its form, `sent(R, M)` for the nearest
+/// earlier send of the combo, sent to the one term `R` with content `C` and `M` the mood-wrapped
+/// `C` (`(Next).send(!token(T, R)) + delete(sent(Next, imp(token(T, R))))`).
+///
+/// Why the mark the send leaves then finds the fact exactly: a combo's actions run in order
+/// under one substitution `s`, so the delete's pattern under `s` is `sent(R·s, wrap(C·s))`, the
+/// fact the send held when it held one ([`names_its_sent_fact`]); no other send runs between
+/// them (it is the nearest), every send forgets the mark first, and any change to the held
+/// facts after the mark (a delete of one, a settle before another action or a module call)
+/// makes it stale, so a valid mark is that fact at that position. Held facts are distinct, so
+/// matching would have found that one. Without a valid mark the delete matches as before.
+pub fn link_sent_deletes(actions: &mut [ActionDef]) {
+    let mut last_send: Option<Term> = None;
+    for a in actions.iter_mut() {
+        match &mut a.kind {
+            Act::Send {
+                to: Receivers::Agents(ts),
+                mood,
+                content,
+                ..
+            } if ts.len() == 1 => {
+                last_send = Some(sent(&ts[0], &wrap_mood(*mood, content.clone())));
+            }
+            Act::Send { .. } => last_send = None,
+            Act::Delete(d) => d.of_send = last_send.as_ref() == Some(&d.fact),
+            _ => {}
+        }
+    }
+}
+
 impl Core {
     /// The receiver names of a selector under `s`.
     fn receivers(&self, to: &Receivers, s: &Subst) -> Result<Names, Fault> {
@@ -173,6 +214,7 @@ impl Core {
         s: &Subst,
     ) -> Result<Outcome, Fault> {
         let wrapped = message_content(mood, content, s)?;
+        self.ms.mailbox.unmark_sent();
         let record = self.level >= TraceLevel::Changes;
         let mut ev = Vec::new();
         for r in self.receivers(to, s)? {
@@ -210,6 +252,9 @@ impl Core {
                     fact: sent(&rt, &wrapped).to_string(),
                 });
             }
+        }
+        if !names_its_sent_fact(to, s, mood, &wrapped) {
+            self.ms.mailbox.unmark_sent();
         }
         for e in ev {
             self.event(e);
@@ -366,6 +411,55 @@ mod tests {
         assert!(passes("token(T, R)") && passes("ack(accept, T)"));
         assert!(!passes("greater(A)") && !passes("ack(A, T)") && !passes("token(T, X)"));
         assert!(!passes("f(g(range(R, T)))") && !passes("when(go, N)") && !passes("f(G)"));
+    }
+
+    /// Which deletes of the combo `text` (actions joined by `+`) [`link_sent_deletes`] links.
+    fn linked(text: &str) -> Vec<bool> {
+        let src = format!("main module {{ program {{ if true then {text}. }} }}");
+        let prog = crate::agent::program::Program::from_source("t.goal", &src).expect("program");
+        let rule = prog.blocks.iter().flat_map(|b| &b.rules).next();
+        let Some(crate::agent::program::Body::Combo(acts)) = rule.map(|r| &r.body) else {
+            panic!("a combo")
+        };
+        acts.iter()
+            .filter_map(|a| match &a.kind {
+                Act::Delete(d) => Some(d.of_send),
+                _ => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_delete_is_linked_to_the_nearest_send_of_its_sent_fact_only() {
+        let ring = "(N).send(!token(T, R)) + delete(received(S, imp(token(T, K)))) \
+                    + delete(sent(N, imp(token(T, R))))";
+        assert_eq!(linked(ring), [false, true]);
+        // A nested argument, the mood, the receiver or the predicate differs.
+        assert_eq!(
+            linked("(N).send(!t(T, R)) + delete(sent(N, imp(t(T, K))))"),
+            [false]
+        );
+        assert_eq!(
+            linked("(N).send(?t(T)) + delete(sent(N, imp(t(T))))"),
+            [false]
+        );
+        assert_eq!(linked("(N).send(t) + delete(sent(M, t))"), [false]);
+        assert_eq!(linked("(N).send(t) + delete(received(N, t))"), [false]);
+        // Another send between, or one with more receivers: no link.
+        assert_eq!(
+            linked("(N).send(t) + (M).send(u) + delete(sent(N, t))"),
+            [false]
+        );
+        assert_eq!(
+            linked("(N).send(t) + all.send(t) + delete(sent(N, t))"),
+            [false]
+        );
+        assert_eq!(linked("(N, M).send(t) + delete(sent(N, t))"), [false]);
+        // Each delete after the send, and a plain (declarative) one.
+        assert_eq!(
+            linked("(N).send(t) + delete(sent(N, t)) + delete(sent(N, t))"),
+            [true, true]
+        );
     }
 
     #[test]
