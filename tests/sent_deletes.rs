@@ -4,22 +4,32 @@
 
 mod agent_support;
 use agent_support::*;
+use goal::agent::{Agent, AgentConfig, TraceLevel};
 
 /// The mail facts of an agent `a` (knowing `b` and `c`) after one cycle of `combo`, and the
-/// receivers of the messages it sent.
+/// receivers of the messages it sent; the same with and without a trace (which settles the
+/// mailbox after each action, so the marks are used only without one).
 fn mail_after(combo: &str) -> (Vec<String>, Vec<String>) {
     let src = format!(
         "init module {{ beliefs {{ team([b, c]). }} }}
          main module {{ program {{ if bel(team(T)) then {combo} + exit-module. }} }}"
     );
-    let mut a = agent_with(&src, "a", &["b", "c"], 1);
-    let out = a.step(&[], &[]);
-    let mail = a.mental_state().mailbox.facts().iter();
-    let sent = out
-        .messages
-        .iter()
-        .map(|m| format!("{}:{}", m.receiver, m.content));
-    (mail.map(|f| f.to_string()).collect(), sent.collect())
+    let run = |trace| {
+        let cfg = AgentConfig {
+            agents: vec!["b".into(), "c".into()],
+            trace,
+            ..AgentConfig::default()
+        };
+        let mut a = Agent::new(program(&src), "a", cfg);
+        let out = a.step(&[], &[]);
+        let mail = a.mental_state().mailbox.facts().iter();
+        let sent = out.messages.iter();
+        let sent = sent.map(|m| format!("{}:{}", m.receiver, m.content));
+        (mail.map(|f| f.to_string()).collect(), sent.collect())
+    };
+    let quiet: (Vec<String>, Vec<String>) = run(TraceLevel::Off);
+    assert_eq!(quiet, run(TraceLevel::Rules), "{combo}");
+    quiet
 }
 
 #[test]
