@@ -137,6 +137,9 @@ pub struct Mailbox {
     /// Where the last send left its held fact: `(held_edits, position in held)` just after the
     /// push (see [`Mailbox::mark_sent`] and [`Mailbox::delete_matching`]).
     sent_mark: Option<(u64, usize)>,
+    /// The content of the agent's last send, kept so that the next send may write its own
+    /// over it (see `spare.rs`).
+    spare: Option<Term>,
     /// The `received(Sender, Content)` facts of messages that arrived this cycle, as their
     /// arguments, in arrival order, not yet in `facts` (each surely new there, at most
     /// [`ARRIVED`]): an agent that reads a message by a condition plan and deletes it in the
@@ -333,6 +336,16 @@ impl Mailbox {
             self.facts.delete(&f);
         }
         Some(Deleted::Fact(f))
+    }
+
+    /// Takes the kept content of the last send (see `spare.rs`).
+    pub fn take_spare(&mut self) -> Option<Term> {
+        self.spare.take()
+    }
+
+    /// Keeps `content`, just sent, for the next send to write over.
+    pub fn keep_spare(&mut self, content: Term) {
+        self.spare = Some(content);
     }
 
     /// Forgets where the last send left its held fact (called as a send starts, and after one

@@ -6,6 +6,7 @@ use super::condition::show_subst;
 use super::cycle::Core;
 use super::error::Fault;
 use super::mailbox::{received, sent, Message};
+use super::mental_state::MentalState;
 use super::program::{Act, ActionDef, Receivers};
 use super::timing::CHANNEL;
 use super::trace::{Event, TraceLevel};
@@ -61,18 +62,25 @@ pub fn agent_names(ts: &[Term], s: &Subst) -> Result<Names, Fault> {
 }
 
 /// Pattern nesting up to which [`atomic_instance`] builds a message's content.
-const CONTENT_DEPTH: u32 = 32;
+pub(super) const CONTENT_DEPTH: u32 = 32;
 
 /// The content a send of `content` with `mood` sends under `s`: instantiated, checked ground
 /// (but for a question) and valid in the content language (`clamr::content::validate`), and
 /// wrapped in its mood.
-fn message_content(mood: Mood, content: &Term, s: &Subst) -> Result<Term, Fault> {
+#[cfg(test)]
+pub(super) fn message_content(mood: Mood, content: &Term, s: &Subst) -> Result<Term, Fault> {
+    built_content(mood, content, s).map(|(c, _)| c)
+}
+
+/// [`message_content`] with whether it was built by [`atomic_instance`] (so its size is the
+/// pattern's, and worth keeping as the agent's spare: see `spare.rs`).
+fn built_content(mood: Mood, content: &Term, s: &Subst) -> Result<(Term, bool), Fault> {
     let mut suspect = false;
-    let (c, checked) = match atomic_instance(s, content, CONTENT_DEPTH, &mut suspect) {
+    let (c, checked, atomic) = match atomic_instance(s, content, CONTENT_DEPTH, &mut suspect) {
         // Ground by construction; and `validate` can only reject a message at a compound whose
         // functor `may_reject` names: the instance's compounds are the pattern's own (the
         // mood's wrapper is none of them), so without a suspect one it passes as it is.
-        Some((c, _)) => (c, !suspect),
+        Some((c, _)) => (c, !suspect, true),
         None => {
             let c = s.apply(content);
             if mood != Mood::Interrogative && !c.is_ground() {
@@ -81,7 +89,7 @@ fn message_content(mood: Mood, content: &Term, s: &Subst) -> Result<Term, Fault>
                     binding: Some(show_subst(s)),
                 });
             }
-            (c, false)
+            (c, false, false)
         }
     };
     let wrapped = wrap_mood(mood, c);
@@ -91,6 +99,24 @@ fn message_content(mood: Mood, content: &Term, s: &Subst) -> Result<Term, Fault>
             binding: Some(show_subst(s)),
         })?;
     }
+    Ok((wrapped, atomic))
+}
+
+/// The content a send of `content` with `mood` sends under `s` ([`message_content`]), written
+/// over the agent's spare content when it can be (see `spare.rs`); the result is kept as the
+/// next spare when it has the pattern's size.
+fn content_for(ms: &mut MentalState, mood: Mood, content: &Term, s: &Subst) -> Result<Term, Fault> {
+    let reused = ms
+        .mailbox
+        .take_spare()
+        .and_then(|spare| super::spare::refilled(mood, content, s, spare));
+    let (wrapped, keep) = match reused {
+        Some(w) => (w, true),
+        None => built_content(mood, content, s)?,
+    };
+    if keep && matches!(wrapped, Term::Compound(_)) {
+        ms.mailbox.keep_spare(wrapped.clone());
+    }
     Ok(wrapped)
 }
 
@@ -98,7 +124,12 @@ fn message_content(mood: Mood, content: &Term, s: &Subst) -> Result<Term, Fault>
 /// atomic term and it nests at most `depth` deep (the usual message: `token(T, R)`); `None`
 /// otherwise (the caller applies `s` the general way). Sets `suspect` on meeting a compound
 /// that content validation may reject. Unchanged arguments are shared, as `Subst::apply` does.
-fn atomic_instance(s: &Subst, t: &Term, depth: u32, suspect: &mut bool) -> Option<(Term, bool)> {
+pub(super) fn atomic_instance(
+    s: &Subst,
+    t: &Term,
+    depth: u32,
+    suspect: &mut bool,
+) -> Option<(Term, bool)> {
     match t {
         Term::Var(_) => Some((atomic_value(s, t)?, true)),
         Term::Compound(_) if depth == 0 => None,
@@ -138,7 +169,7 @@ fn atomic_instance(s: &Subst, t: &Term, depth: u32, suspect: &mut bool) -> Optio
 }
 
 /// The value of variable `v` under `s` when it is bound to an atomic term; `None` otherwise.
-fn atomic_value(s: &Subst, v: &Term) -> Option<Term> {
+pub(super) fn atomic_value(s: &Subst, v: &Term) -> Option<Term> {
     match s.walk(v) {
         Term::Var(_) | Term::Compound(_) => None,
         x => Some(x.clone()),
@@ -213,7 +244,7 @@ impl Core {
         channels: bool,
         s: &Subst,
     ) -> Result<Outcome, Fault> {
-        let wrapped = message_content(mood, content, s)?;
+        let wrapped = content_for(&mut self.ms, mood, content, s)?;
         self.ms.mailbox.unmark_sent();
         let record = self.level >= TraceLevel::Changes;
         let mut ev = Vec::new();
