@@ -378,12 +378,12 @@ impl Core {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::agent::mailbox::tests::term;
 
     /// A substitution binding each `(variable, term text)`.
-    fn subst(pairs: &[(&str, &str)]) -> Subst {
+    pub(in crate::agent) fn subst(pairs: &[(&str, &str)]) -> Subst {
         let mut s = Subst::new();
         for (v, t) in pairs {
             s.bind(Sym::intern(v), term(t));

@@ -85,15 +85,7 @@ mod tests {
     use super::*;
     use crate::agent::mailbox::tests::term;
     use crate::agent::message::message_content;
-    use crate::term::Sym;
-
-    fn subst(pairs: &[(&str, &str)]) -> Subst {
-        let mut s = Subst::new();
-        for (v, t) in pairs {
-            s.bind(Sym::intern(v), term(t));
-        }
-        s
-    }
+    use crate::agent::message::tests::subst;
 
     /// A spare no one else holds: `text` built anew.
     fn fresh(text: &str) -> Term {
