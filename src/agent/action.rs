@@ -36,8 +36,9 @@ impl Core {
                 self.check_goals()?;
                 Ok(Outcome::Done { real: true })
             }
-            Act::Delete(t) => {
-                if let Some(f) = self.ms.mailbox.delete_matching(t, s) {
+            Act::Delete(d) => {
+                let t = &d.fact;
+                if let Some(f) = self.ms.mailbox.delete_matching(t, s, d.of_send) {
                     // The message the rule matched, deleted without building it first.
                     if self.ms.record {
                         self.changes(vec![Event::MailDeleted {

@@ -404,7 +404,9 @@ impl<'s> Compiler<'s> {
         self.literals(&r.condition, &Subst::new(), 0, &mut cond);
         let body = match &r.body {
             ast::RuleBody::Combo(actions) => {
-                Body::Combo(actions.iter().filter_map(|a| self.action(a)).collect())
+                let mut acts: Vec<_> = actions.iter().filter_map(|a| self.action(a)).collect();
+                super::message::link_sent_deletes(&mut acts);
+                Body::Combo(acts)
             }
             ast::RuleBody::Block(rules) => {
                 Body::Block(self.block(module, rules, self.nested_order))
@@ -550,7 +552,7 @@ impl<'s> Compiler<'s> {
             }
             K::Delete { selector, content } => {
                 this_only(self, selector, "delete");
-                Act::Delete(content.term.clone())
+                Act::Delete(Deletion::new(content.term.clone()))
             }
             K::Send {
                 selector,

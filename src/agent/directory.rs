@@ -11,9 +11,9 @@ pub struct Directory {
     names: Vec<String>,
     /// The names interned, in the same order.
     syms: Vec<Sym>,
-    /// (symbol id, position) sorted by symbol id: finding an agent by its symbol is a search
-    /// over integers, not over names (sending a message does it).
-    by_sym: Vec<(u32, u32)>,
+    /// One bit per symbol id, set for the known agents: [`Directory::knows`] (asked once per
+    /// message sent) is a load and a mask, not a search.
+    known: Vec<u64>,
     facts: FactBase,
 }
 
@@ -38,6 +38,20 @@ pub fn position(table: &[(u32, u32)], s: Sym) -> Option<usize> {
         .map(|k| table[k].1 as usize)
 }
 
+/// A bit set over symbol ids with the bits of `syms` set (as long as the largest id needs).
+fn sym_bits(syms: &[Sym]) -> Vec<u64> {
+    let words = syms
+        .iter()
+        .map(|s| s.0 as usize / 64 + 1)
+        .max()
+        .unwrap_or(0);
+    let mut bits = vec![0u64; words];
+    for s in syms {
+        bits[s.0 as usize / 64] |= 1 << (s.0 % 64);
+    }
+    bits
+}
+
 impl Directory {
     /// A shared directory of `names` (any order, duplicates ignored).
     pub fn new(names: &[String]) -> Arc<Directory> {
@@ -50,7 +64,7 @@ impl Directory {
             facts.insert(Term::compound(wk::AGENT, vec![Term::Atom(n)]));
         }
         Arc::new(Directory {
-            by_sym: sym_table(&syms),
+            known: sym_bits(&syms),
             names,
             syms,
             facts,
@@ -63,8 +77,13 @@ impl Directory {
     }
 
     /// True when the agent named `name` is known.
+    #[inline]
     pub fn knows(&self, name: Sym) -> bool {
-        position(&self.by_sym, name).is_some()
+        // Exactly the names of `syms`: the bit of each was set, and no other (see `sym_bits`).
+        let id = name.0 as usize;
+        self.known
+            .get(id / 64)
+            .is_some_and(|w| w & (1 << (id % 64)) != 0)
     }
 
     /// The names, sorted.
@@ -95,6 +114,12 @@ mod tests {
         assert_eq!(d.names(), ["a", "b"]);
         assert!(d.contains("a") && d.contains("b") && !d.contains("c"));
         assert!(d.knows(Sym::intern("a")) && !d.knows(Sym::intern("c")));
+        // Every symbol is asked: exactly the agents' names are known, ids past the set's end
+        // included.
+        let far = Sym::intern("directory_test_a_name_interned_last");
+        for id in 0..=far.0 + 70 {
+            assert_eq!(d.knows(Sym(id)), d.syms().contains(&Sym(id)), "symbol {id}");
+        }
         assert_eq!(d.syms(), [Sym::intern("a"), Sym::intern("b")]);
         assert_eq!(d.facts().len(), 2);
         assert!(d

@@ -131,6 +131,15 @@ pub struct Mailbox {
     /// base for it. Moved into `facts` by [`Mailbox::settle`] before anything can read the
     /// mailbox.
     held: Vec<(Sym, Term)>,
+    /// Changes of `held` so far (push, take, settle): a mark taken after a change is valid
+    /// while the count stays the same.
+    held_edits: u64,
+    /// Where the last send left its held fact: `(held_edits, position in held)` just after the
+    /// push (see [`Mailbox::mark_sent`] and [`Mailbox::delete_matching`]).
+    sent_mark: Option<(u64, usize)>,
+    /// The content of the agent's last send, kept so that the next send may write its own
+    /// over it (see `spare.rs`).
+    spare: Option<Term>,
     /// The `received(Sender, Content)` facts of messages that arrived this cycle, as their
     /// arguments, in arrival order, not yet in `facts` (each surely new there, at most
     /// [`ARRIVED`]): an agent that reads a message by a condition plan and deletes it in the
@@ -231,6 +240,12 @@ impl Mailbox {
         true
     }
 
+    /// Removes held fact `k`.
+    fn take_held(&mut self, k: usize) -> (Sym, Term) {
+        self.held_edits += 1;
+        take_at(&mut self.held, k)
+    }
+
     /// Removes arrived fact `k`.
     fn take_arrived(&mut self, k: usize) -> [Term; 2] {
         self.arrived_base.take();
@@ -247,7 +262,7 @@ impl Mailbox {
     /// Removes a mail fact; false when absent.
     pub fn delete(&mut self, fact: &Term) -> bool {
         if let Some(k) = self.held.iter().position(|h| is_held(h, fact)) {
-            take_at(&mut self.held, k);
+            self.take_held(k);
             return true;
         }
         if fact.is_functor(wk::RECEIVED, 2) {
@@ -277,13 +292,22 @@ impl Mailbox {
     /// Removes the mail fact that `pattern` stands for under `s`, found without building it:
     /// a rule deleting the message its condition matched. `None` when `pattern` is no mail
     /// fact held or among the first [`SCAN`] facts of its predicate; the caller then takes the
-    /// general way (building the fact, which also reports what is not ground).
-    pub fn delete_matching(&mut self, pattern: &Term, s: &Subst) -> Option<Deleted> {
+    /// general way (building the fact, which also reports what is not ground). `of_send`: the
+    /// pattern is by its form the `sent/2` fact of the last send (see
+    /// [`Mailbox::mark_sent`]), whose mark, while valid, finds it without matching.
+    pub fn delete_matching(&mut self, pattern: &Term, s: &Subst, of_send: bool) -> Option<Deleted> {
+        if of_send {
+            if let Some(k) = self.marked_sent() {
+                debug_assert!(held_under(s, pattern, &self.held[k]), "stale sent mark");
+                let (r, c) = self.take_held(k);
+                return Some(Deleted::Sent(r, c));
+            }
+        }
         if !is_mail_fact(pattern) {
             return None;
         }
         if let Some(k) = self.held.iter().position(|h| held_under(s, pattern, h)) {
-            let (r, c) = take_at(&mut self.held, k);
+            let (r, c) = self.take_held(k);
             return Some(Deleted::Sent(r, c));
         }
         // A ground pattern matches one fact at most: where it is looked for first is no matter.
@@ -314,6 +338,37 @@ impl Mailbox {
         Some(Deleted::Fact(f))
     }
 
+    /// Takes the kept content of the last send (see `spare.rs`).
+    pub fn take_spare(&mut self) -> Option<Term> {
+        self.spare.take()
+    }
+
+    /// Keeps `content`, just sent, for the next send to write over.
+    pub fn keep_spare(&mut self, content: Term) {
+        self.spare = Some(content);
+    }
+
+    /// Forgets where the last send left its held fact (called as a send starts, and after one
+    /// whose fact a `delete` cannot name by its form).
+    pub fn unmark_sent(&mut self) {
+        self.sent_mark = None;
+    }
+
+    /// Marks the held fact the last [`Mailbox::hold_sent`] pushed (if it pushed one since
+    /// [`Mailbox::unmark_sent`]) as the one the send just made.
+    fn mark_sent(&mut self) {
+        self.sent_mark = Some((self.held_edits, self.held.len() - 1));
+    }
+
+    /// The position in `held` of the marked fact while no change to `held` came after the
+    /// mark (so it is still there, at that position).
+    fn marked_sent(&self) -> Option<usize> {
+        match self.sent_mark {
+            Some((edits, k)) if edits == self.held_edits => Some(k),
+            _ => None,
+        }
+    }
+
     /// Adds the fact `sent(receiver, content)` of a send; false when already present. The
     /// fact is held back (not built, not yet in the fact base) while it is surely new: no
     /// `sent/2` fact is in the base and none held is equal. Whoever reads the mailbox calls
@@ -331,6 +386,8 @@ impl Mailbox {
             return self.facts.insert(sent(&Term::Atom(receiver), &content));
         }
         self.held.push((receiver, content));
+        self.held_edits += 1;
+        self.mark_sent();
         true
     }
 
@@ -356,6 +413,7 @@ impl Mailbox {
     }
 
     fn settle_held(&mut self) {
+        self.held_edits += 1;
         // Drained, not taken: the buffer is kept for the next combo's sends.
         for (r, c) in self.held.drain(..) {
             self.facts.insert(sent(&Term::Atom(r), &c));
@@ -404,33 +462,70 @@ pub(super) mod tests {
         s.bind(Sym::intern("K"), Term::Int(5));
         // Another sender (an atom differs) or another token (an integer differs): no match.
         assert_eq!(
-            mb.delete_matching(&term("received(b, imp(token(T, K)))"), &s),
+            mb.delete_matching(&term("received(b, imp(token(T, K)))"), &s, false),
             None
         );
         assert_eq!(
-            mb.delete_matching(&term("received(a, imp(token(T, 6)))"), &s),
+            mb.delete_matching(&term("received(a, imp(token(T, 6)))"), &s, false),
             None
         );
         let pattern = term("received(a, imp(token(T, K)))");
         assert_eq!(
-            mb.delete_matching(&pattern, &s).map(Deleted::term),
+            mb.delete_matching(&pattern, &s, false).map(Deleted::term),
             Some(term("received(a, imp(token(2, 5)))"))
         );
         // Gone: the same pattern now finds nothing.
-        assert_eq!(mb.delete_matching(&pattern, &s), None);
+        assert_eq!(mb.delete_matching(&pattern, &s, false), None);
         s.bind(Sym::intern("R"), Term::Int(4));
         let held = term("sent(b, imp(token(1, R)))");
         assert_eq!(
-            mb.delete_matching(&held, &s).map(Deleted::term),
+            mb.delete_matching(&held, &s, false).map(Deleted::term),
             Some(term("sent(b, imp(token(1, 4)))"))
         );
         mb.settle();
         assert_eq!(mb.facts().len(), 1);
         // An unbound variable or a fact of another kind: left to the general way.
         let open = term("received(a, imp(token(1, X)))");
-        assert_eq!(mb.delete_matching(&open, &s), None);
-        assert_eq!(mb.delete_matching(&term("at(a)"), &s), None);
+        assert_eq!(mb.delete_matching(&open, &s, false), None);
+        assert_eq!(mb.delete_matching(&term("at(a)"), &s, false), None);
         assert_eq!(mb.facts().len(), 1);
+    }
+
+    #[test]
+    fn a_sent_mark_finds_its_fact_until_the_held_facts_change() {
+        let (b, c) = (Sym::intern("b"), Sym::intern("c"));
+        let mut s = Subst::new();
+        s.bind(Sym::intern("X"), Term::Int(1));
+        let of_b = term("sent(b, imp(go(X)))");
+        let of_c = term("sent(c, y)");
+        // The mark of the last push finds that fact.
+        let mut mb = Mailbox::default();
+        assert!(mb.hold_sent(b, term("imp(go(1))")));
+        assert_eq!(
+            mb.delete_matching(&of_b, &s, true).map(Deleted::term),
+            Some(term("sent(b, imp(go(1)))"))
+        );
+        // A fact before the marked one taken away: the mark is stale (its position moved), and
+        // the delete matches instead.
+        mb.hold_sent(b, term("imp(go(1))"));
+        mb.hold_sent(c, term("y"));
+        assert!(mb.delete(&term("sent(b, imp(go(1)))")));
+        assert_eq!(
+            mb.delete_matching(&of_c, &s, true).map(Deleted::term),
+            Some(term("sent(c, y)"))
+        );
+        // Settled into the fact base: found there by matching.
+        mb.hold_sent(c, term("y"));
+        mb.settle();
+        assert_eq!(
+            mb.delete_matching(&of_c, &s, true),
+            Some(Deleted::Fact(term("sent(c, y)")))
+        );
+        // Forgotten: nothing is taken without a match.
+        mb.hold_sent(c, term("y"));
+        mb.unmark_sent();
+        assert_eq!(mb.delete_matching(&of_b, &s, true), None);
+        assert_eq!(mb.held.len(), 1);
     }
 
     #[test]
@@ -447,7 +542,7 @@ pub(super) mod tests {
         s.bind(Sym::intern("S"), Term::atom("a"));
         let pattern = term("received(S, imp(token(T, K)))");
         assert_eq!(
-            by_pattern.delete_matching(&pattern, &s),
+            by_pattern.delete_matching(&pattern, &s, false),
             Some(Deleted::Fact(fact.clone()))
         );
         assert!(by_term.delete(&fact));
@@ -458,13 +553,15 @@ pub(super) mod tests {
         assert!(by_pattern.insert(fact.clone()));
         assert!(by_pattern.facts().contains(&fact));
         assert_eq!(
-            by_pattern.delete_matching(&pattern, &s).map(Deleted::term),
+            by_pattern
+                .delete_matching(&pattern, &s, false)
+                .map(Deleted::term),
             Some(fact)
         );
         // With two facts, the matched one goes and the other stays.
         by_pattern.insert(term("received(a, imp(token(1, 5)))"));
         by_pattern.insert(term("received(b, imp(token(1, 5)))"));
-        assert!(by_pattern.delete_matching(&pattern, &s).is_some());
+        assert!(by_pattern.delete_matching(&pattern, &s, false).is_some());
         let left: Vec<&Term> = by_pattern.facts().iter().collect();
         assert_eq!(left, [&term("received(b, imp(token(1, 5)))")]);
     }
@@ -505,7 +602,7 @@ pub(super) mod tests {
         let mut s = Subst::new();
         s.bind(Sym::intern("X"), Term::Int(1));
         assert_eq!(
-            mb.delete_matching(&term("received(a, imp(go(X)))"), &s)
+            mb.delete_matching(&term("received(a, imp(go(X)))"), &s, false)
                 .map(Deleted::term),
             Some(term("received(a, imp(go(1)))"))
         );
@@ -615,11 +712,11 @@ pub(super) mod tests {
         let mut s = Subst::new();
         s.bind(Sym::intern("X"), Term::Int(2));
         // A difference at the bottom, then a match there.
-        assert_eq!(mb.delete_matching(&deep("X"), &s), None);
+        assert_eq!(mb.delete_matching(&deep("X"), &s, false), None);
         s = Subst::new();
         s.bind(Sym::intern("X"), Term::Int(1));
         assert_eq!(
-            mb.delete_matching(&deep("X"), &s).map(Deleted::term),
+            mb.delete_matching(&deep("X"), &s, false).map(Deleted::term),
             Some(deep("1"))
         );
         assert_eq!(mb.facts().len(), 0);

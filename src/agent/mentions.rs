@@ -39,7 +39,8 @@ pub fn uses_sessions(p: &Parts<'_>) -> bool {
             match &a.kind {
                 Act::Log(_) => return true,
                 Act::Adopt { content, .. } => work.push(content),
-                Act::Drop(t) | Act::Insert(t) | Act::Delete(t) | Act::Print(t) => work.push(t),
+                Act::Drop(t) | Act::Insert(t) | Act::Print(t) => work.push(t),
+                Act::Delete(d) => work.push(&d.fact),
                 Act::Send { to, content, .. } => {
                     work.push(content);
                     if let Receivers::Agents(ts) = to {

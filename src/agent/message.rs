@@ -6,7 +6,8 @@ use super::condition::show_subst;
 use super::cycle::Core;
 use super::error::Fault;
 use super::mailbox::{received, sent, Message};
-use super::program::Receivers;
+use super::mental_state::MentalState;
+use super::program::{Act, ActionDef, Receivers};
 use super::timing::CHANNEL;
 use super::trace::{Event, TraceLevel};
 use crate::syntax::ast::Mood;
@@ -61,18 +62,25 @@ pub fn agent_names(ts: &[Term], s: &Subst) -> Result<Names, Fault> {
 }
 
 /// Pattern nesting up to which [`atomic_instance`] builds a message's content.
-const CONTENT_DEPTH: u32 = 32;
+pub(super) const CONTENT_DEPTH: u32 = 32;
 
 /// The content a send of `content` with `mood` sends under `s`: instantiated, checked ground
 /// (but for a question) and valid in the content language (`clamr::content::validate`), and
 /// wrapped in its mood.
-fn message_content(mood: Mood, content: &Term, s: &Subst) -> Result<Term, Fault> {
+#[cfg(test)]
+pub(super) fn message_content(mood: Mood, content: &Term, s: &Subst) -> Result<Term, Fault> {
+    built_content(mood, content, s).map(|(c, _)| c)
+}
+
+/// [`message_content`] with whether it was built by [`atomic_instance`] (so its size is the
+/// pattern's, and worth keeping as the agent's spare: see `spare.rs`).
+fn built_content(mood: Mood, content: &Term, s: &Subst) -> Result<(Term, bool), Fault> {
     let mut suspect = false;
-    let (c, checked) = match atomic_instance(s, content, CONTENT_DEPTH, &mut suspect) {
+    let (c, checked, atomic) = match atomic_instance(s, content, CONTENT_DEPTH, &mut suspect) {
         // Ground by construction; and `validate` can only reject a message at a compound whose
         // functor `may_reject` names: the instance's compounds are the pattern's own (the
         // mood's wrapper is none of them), so without a suspect one it passes as it is.
-        Some((c, _)) => (c, !suspect),
+        Some((c, _)) => (c, !suspect, true),
         None => {
             let c = s.apply(content);
             if mood != Mood::Interrogative && !c.is_ground() {
@@ -81,7 +89,7 @@ fn message_content(mood: Mood, content: &Term, s: &Subst) -> Result<Term, Fault>
                     binding: Some(show_subst(s)),
                 });
             }
-            (c, false)
+            (c, false, false)
         }
     };
     let wrapped = wrap_mood(mood, c);
@@ -91,6 +99,24 @@ fn message_content(mood: Mood, content: &Term, s: &Subst) -> Result<Term, Fault>
             binding: Some(show_subst(s)),
         })?;
     }
+    Ok((wrapped, atomic))
+}
+
+/// The content a send of `content` with `mood` sends under `s` ([`message_content`]), written
+/// over the agent's spare content when it can be (see `spare.rs`); the result is kept as the
+/// next spare when it has the pattern's size.
+fn content_for(ms: &mut MentalState, mood: Mood, content: &Term, s: &Subst) -> Result<Term, Fault> {
+    let reused = ms
+        .mailbox
+        .take_spare()
+        .and_then(|spare| super::spare::refilled(mood, content, s, spare));
+    let (wrapped, keep) = match reused {
+        Some(w) => (w, true),
+        None => built_content(mood, content, s)?,
+    };
+    if keep && matches!(wrapped, Term::Compound(_)) {
+        ms.mailbox.keep_spare(wrapped.clone());
+    }
     Ok(wrapped)
 }
 
@@ -98,7 +124,12 @@ fn message_content(mood: Mood, content: &Term, s: &Subst) -> Result<Term, Fault>
 /// atomic term and it nests at most `depth` deep (the usual message: `token(T, R)`); `None`
 /// otherwise (the caller applies `s` the general way). Sets `suspect` on meeting a compound
 /// that content validation may reject. Unchanged arguments are shared, as `Subst::apply` does.
-fn atomic_instance(s: &Subst, t: &Term, depth: u32, suspect: &mut bool) -> Option<(Term, bool)> {
+pub(super) fn atomic_instance(
+    s: &Subst,
+    t: &Term,
+    depth: u32,
+    suspect: &mut bool,
+) -> Option<(Term, bool)> {
     match t {
         Term::Var(_) => Some((atomic_value(s, t)?, true)),
         Term::Compound(_) if depth == 0 => None,
@@ -138,10 +169,51 @@ fn atomic_instance(s: &Subst, t: &Term, depth: u32, suspect: &mut bool) -> Optio
 }
 
 /// The value of variable `v` under `s` when it is bound to an atomic term; `None` otherwise.
-fn atomic_value(s: &Subst, v: &Term) -> Option<Term> {
+pub(super) fn atomic_value(s: &Subst, v: &Term) -> Option<Term> {
     match s.walk(v) {
         Term::Var(_) | Term::Compound(_) => None,
         x => Some(x.clone()),
+    }
+}
+
+/// True when the `sent/2` fact this send held (if it held one) is, under `s`, the instance of
+/// `sent(R, M)` for its one receiver term `R` and its mood-wrapped content pattern `M` (the form
+/// [`link_sent_deletes`] looks for): `R` stands for one atom (not a list, not `[]`), so the
+/// send had at most that one receiver, and the content is ground, as a `delete`'s match needs.
+fn names_its_sent_fact(to: &Receivers, s: &Subst, mood: Mood, wrapped: &Term) -> bool {
+    let one = matches!(to, Receivers::Agents(ts) if ts.len() == 1
+        && matches!(s.walk(&ts[0]), Term::Atom(a) if *a != wk::NIL));
+    // Only a question may be sent with variables (`message_content`).
+    one && (mood != Mood::Interrogative || wrapped.is_ground())
+}
+
+/// Links each `delete` of a combo whose pattern is, by its form, `sent(R, M)` for the nearest
+/// earlier send of the combo, sent to the one term `R` with content `C` and `M` the mood-wrapped
+/// `C` (`(Next).send(!token(T, R)) + delete(sent(Next, imp(token(T, R))))`).
+///
+/// Why the mark the send leaves then finds the fact exactly: a combo's actions run in order
+/// under one substitution `s`, so the delete's pattern under `s` is `sent(R·s, wrap(C·s))`, the
+/// fact the send held when it held one ([`names_its_sent_fact`]); no other send runs between
+/// them (it is the nearest), every send forgets the mark first, and any change to the held
+/// facts after the mark (a delete of one, a settle before another action or a module call)
+/// makes it stale, so a valid mark is that fact at that position. Held facts are distinct, so
+/// matching would have found that one. Without a valid mark the delete matches as before.
+pub fn link_sent_deletes(actions: &mut [ActionDef]) {
+    let mut last_send: Option<Term> = None;
+    for a in actions.iter_mut() {
+        match &mut a.kind {
+            Act::Send {
+                to: Receivers::Agents(ts),
+                mood,
+                content,
+                ..
+            } if ts.len() == 1 => {
+                last_send = Some(sent(&ts[0], &wrap_mood(*mood, content.clone())));
+            }
+            Act::Send { .. } => last_send = None,
+            Act::Delete(d) => d.of_send = last_send.as_ref() == Some(&d.fact),
+            _ => {}
+        }
     }
 }
 
@@ -172,7 +244,8 @@ impl Core {
         channels: bool,
         s: &Subst,
     ) -> Result<Outcome, Fault> {
-        let wrapped = message_content(mood, content, s)?;
+        let wrapped = content_for(&mut self.ms, mood, content, s)?;
+        self.ms.mailbox.unmark_sent();
         let record = self.level >= TraceLevel::Changes;
         let mut ev = Vec::new();
         for r in self.receivers(to, s)? {
@@ -210,6 +283,9 @@ impl Core {
                     fact: sent(&rt, &wrapped).to_string(),
                 });
             }
+        }
+        if !names_its_sent_fact(to, s, mood, &wrapped) {
+            self.ms.mailbox.unmark_sent();
         }
         for e in ev {
             self.event(e);
@@ -302,12 +378,12 @@ impl Core {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::agent::mailbox::tests::term;
 
     /// A substitution binding each `(variable, term text)`.
-    fn subst(pairs: &[(&str, &str)]) -> Subst {
+    pub(in crate::agent) fn subst(pairs: &[(&str, &str)]) -> Subst {
         let mut s = Subst::new();
         for (v, t) in pairs {
             s.bind(Sym::intern(v), term(t));
@@ -366,6 +442,55 @@ mod tests {
         assert!(passes("token(T, R)") && passes("ack(accept, T)"));
         assert!(!passes("greater(A)") && !passes("ack(A, T)") && !passes("token(T, X)"));
         assert!(!passes("f(g(range(R, T)))") && !passes("when(go, N)") && !passes("f(G)"));
+    }
+
+    /// Which deletes of the combo `text` (actions joined by `+`) [`link_sent_deletes`] links.
+    fn linked(text: &str) -> Vec<bool> {
+        let src = format!("main module {{ program {{ if true then {text}. }} }}");
+        let prog = crate::agent::program::Program::from_source("t.goal", &src).expect("program");
+        let rule = prog.blocks.iter().flat_map(|b| &b.rules).next();
+        let Some(crate::agent::program::Body::Combo(acts)) = rule.map(|r| &r.body) else {
+            panic!("a combo")
+        };
+        acts.iter()
+            .filter_map(|a| match &a.kind {
+                Act::Delete(d) => Some(d.of_send),
+                _ => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_delete_is_linked_to_the_nearest_send_of_its_sent_fact_only() {
+        let ring = "(N).send(!token(T, R)) + delete(received(S, imp(token(T, K)))) \
+                    + delete(sent(N, imp(token(T, R))))";
+        assert_eq!(linked(ring), [false, true]);
+        // A nested argument, the mood, the receiver or the predicate differs.
+        assert_eq!(
+            linked("(N).send(!t(T, R)) + delete(sent(N, imp(t(T, K))))"),
+            [false]
+        );
+        assert_eq!(
+            linked("(N).send(?t(T)) + delete(sent(N, imp(t(T))))"),
+            [false]
+        );
+        assert_eq!(linked("(N).send(t) + delete(sent(M, t))"), [false]);
+        assert_eq!(linked("(N).send(t) + delete(received(N, t))"), [false]);
+        // Another send between, or one with more receivers: no link.
+        assert_eq!(
+            linked("(N).send(t) + (M).send(u) + delete(sent(N, t))"),
+            [false]
+        );
+        assert_eq!(
+            linked("(N).send(t) + all.send(t) + delete(sent(N, t))"),
+            [false]
+        );
+        assert_eq!(linked("(N, M).send(t) + delete(sent(N, t))"), [false]);
+        // Each delete after the send, and a plain (declarative) one.
+        assert_eq!(
+            linked("(N).send(t) + delete(sent(N, t)) + delete(sent(N, t))"),
+            [true, true]
+        );
     }
 
     #[test]

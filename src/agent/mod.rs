@@ -42,6 +42,7 @@ pub mod module;
 pub mod percepts;
 pub mod program;
 pub mod rule;
+mod spare;
 pub mod timing;
 pub mod trace;
 pub mod watch;

@@ -135,7 +135,7 @@ pub enum Act {
     },
     Drop(Term),
     Insert(Term),
-    Delete(Term),
+    Delete(Deletion),
     Send {
         to: Receivers,
         mood: Mood,
@@ -160,6 +160,27 @@ pub enum Act {
         op: ast::TimingOp,
         args: Vec<Term>,
     },
+}
+
+/// A `delete` action.
+#[derive(Clone, Debug)]
+pub struct Deletion {
+    /// The fact pattern.
+    pub fact: Term,
+    /// True when the pattern is, by its form, the `sent/2` fact of the nearest earlier send of
+    /// its combo (see `message::link_sent_deletes`): the mailbox may then find it by the
+    /// identity the send left.
+    pub of_send: bool,
+}
+
+impl Deletion {
+    /// A delete of `fact`, not linked to a send.
+    pub fn new(fact: Term) -> Deletion {
+        Deletion {
+            fact,
+            of_send: false,
+        }
+    }
 }
 
 /// A user action specification.
