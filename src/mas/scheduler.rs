@@ -28,6 +28,10 @@ use std::time::{Duration, Instant};
 /// How long a thread waiting for the other side of a round spins before it blocks.
 const SPIN: Duration = Duration::from_micros(50);
 
+/// How long in all the calling thread spins while taking a shared round's outputs as they
+/// come: with more threads than cores, a spinning caller holds a core the others need.
+const SPIN_ROUND: Duration = Duration::from_micros(400);
+
 /// The next value on `rx`: polled for up to [`SPIN`], then waited for asleep.
 fn wait<T>(rx: &Receiver<T>) -> Result<T, RecvError> {
     let start = Instant::now();
@@ -229,8 +233,10 @@ impl Round {
         let before = out.len();
         out.reserve(n);
         let mut taken = 0;
-        // When the output waited for stopped coming (the clock is read only while waiting).
-        let mut since: Option<Instant> = None;
+        // When the thread began waiting, and when the output waited for stopped coming (the
+        // clock is read only while waiting): it spins while outputs come less than SPIN apart,
+        // for SPIN_ROUND at most.
+        let (mut began, mut since): (Option<Instant>, Option<Instant>) = (None, None);
         while taken < n {
             if self.cells[taken].ended.load(Ordering::Acquire) {
                 Self::take(&self.cells[taken], out);
@@ -238,7 +244,9 @@ impl Round {
                 since = None;
                 continue;
             }
-            if since.get_or_insert_with(Instant::now).elapsed() >= SPIN {
+            let now = Instant::now();
+            let (began, since) = (*began.get_or_insert(now), *since.get_or_insert(now));
+            if now - since >= SPIN || now - began >= SPIN_ROUND {
                 break;
             }
             for _ in 0..64 {
