@@ -316,11 +316,9 @@ impl Core {
                     }
                     // Each answer is used once: move it out instead of cloning (the last one
                     // popped: no placeholder left to drop with the frame).
-                    let answer = match r.next + 1 == r.answers.len() {
-                        true => r.answers.pop(),
-                        false => None,
-                    };
-                    let answer = answer.unwrap_or_else(|| {
+                    let last = r.next + 1 == r.answers.len();
+                    let popped = if last { r.answers.pop() } else { None };
+                    let answer = popped.unwrap_or_else(|| {
                         std::mem::replace(
                             &mut r.answers[r.next],
                             Answer {
