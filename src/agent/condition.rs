@@ -301,10 +301,7 @@ fn evaluate_one(
 ) -> Result<Evaluation, Fault> {
     let mut cut = false;
     let mut answers = literal(cx, lit, base, cap, &mut cut)?;
-    if answers.len() > cap {
-        answers.truncate(cap);
-        cut = true;
-    }
+    cut |= cut_to(&mut answers, cap);
     let failed = answers.is_empty().then(|| (0, smallvec![base.clone()]));
     Ok(Evaluation {
         answers,
@@ -447,6 +444,14 @@ fn literal(
     Ok(finish(*negated, raw))
 }
 
+/// Truncates `answers` to the first `cap`; true when that dropped some.
+#[inline(always)]
+fn cut_to(answers: &mut Found, cap: usize) -> bool {
+    let over = answers.len() > cap;
+    answers.truncate(cap);
+    over
+}
+
 /// The distinct answers of the belief query `query` (planned in `plan`) under `theta`, at most
 /// `cap`, and whether a query stopped there: the plan's when it decides, else the engine's.
 #[inline(always)]
@@ -495,11 +500,8 @@ pub fn answers_upto(
     ) = (lits, base.is_empty())
     {
         let (mut found, cut) = bel_answers(cx.ms, query, plan, base, cap)?;
-        if found.len() > cap {
-            found.truncate(cap);
-            return Ok((found, true));
-        }
-        return Ok((found, cut));
+        let over = cut_to(&mut found, cap);
+        return Ok((found, cut || over));
     }
     let e = evaluate(cx, lits, base, cap)?;
     Ok((e.answers, e.cut))
